@@ -1,0 +1,156 @@
+// Finite-strain J2 elastoplasticity (Simo 1992) with Hencky elasticity.
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <densify/material/material.h>
+
+#include <string>
+
+namespace densify
+{
+  /// Isotropic hardening law of J2Plasticity.
+  enum class Hardening
+  {
+    /// Perfectly plastic: sigma_y = sigma0.
+    none,
+    /// Linear: sigma_y = sigma0 + H eps_p.
+    linear,
+    /// Power law: sigma_y = sigma0 + K eps_p^n.
+    power_law
+  };
+
+  /**
+   * Parameters of J2Plasticity. Units mm, N, MPa. Only the fields of the
+   * selected hardening law are used (H for linear, K and n for power_law).
+   */
+  struct J2Parameters
+  {
+    /// Young's modulus (MPa).
+    double E = 0.;
+    /// Poisson's ratio (-1 < nu < 0.5).
+    double nu = 0.;
+    /// Initial yield stress (MPa, Kirchhoff stress measure).
+    double sigma0 = 0.;
+    /// Linear hardening modulus (MPa).
+    double H = 0.;
+    /// Power-law hardening coefficient (MPa).
+    double K = 0.;
+    /// Power-law hardening exponent (> 0).
+    double n = 1.;
+    /// Hardening law.
+    Hardening hardening = Hardening::none;
+    /// Short name shown in the log, e.g. "Sn".
+    std::string label;
+  };
+
+  /**
+   * Parameters of a named material: "Sn", "Fe" or "Cu" (all perfectly
+   * plastic, see the source for values and references). Throws
+   * std::invalid_argument for any other name (including "custom", whose
+   * parameters the caller must give explicitly).
+   */
+  J2Parameters
+  material_preset(const std::string &name);
+
+  /// Name of a hardening law: "perfectly plastic", "linear hardening" or
+  /// "power-law hardening".
+  std::string
+  hardening_name(const Hardening hardening);
+
+  /**
+   * Finite-strain J2 (von Mises) elastoplasticity after Simo (1992), see
+   * also de Souza Neto, Peric & Owen, "Computational Methods for
+   * Plasticity", ch. 14:
+   * - multiplicative split F = Fe Fp, elastic left Cauchy-Green tensor
+   *   be = F Cp^{-1} F^T with history Cp^{-1} = Fp^{-1} Fp^{-T};
+   * - Hencky law in Kirchhoff stress: tau = K ln(J) I + 2 mu dev(eps_e),
+   *   eps_e = 1/2 ln(be);
+   * - von Mises yield f = sqrt(3/2) |dev tau| - sigma_y(eps_p), associative
+   *   flow, isotropic hardening (none, linear, power law);
+   * - exponential-map return = radial return in principal logarithmic
+   *   strains;
+   * - consistent algorithmic tangent A = dP/dF, exact also for repeated
+   *   principal stretches.
+   *
+   * evaluate() throws std::domain_error if det F <= 0 (inverted element)
+   * and std::runtime_error if the local Newton iteration of the power-law
+   * return mapping fails.
+   */
+  class J2Plasticity : public Material
+  {
+  public:
+    /// Construct from @p parameters; throws std::invalid_argument if they
+    /// are out of range: E <= 0, nu outside (-1, 0.5), sigma0 < 0 (or
+    /// sigma0 = 0 without hardening), H < 0, K < 0 or n <= 0.
+    explicit J2Plasticity(const J2Parameters &parameters);
+
+    /// E.g. "J2 finite strain (Sn, perfectly plastic)".
+    std::string
+    name() const override;
+
+    /// Always true: the law keeps Cp^{-1} and eps_p.
+    bool
+    needs_history() const override
+    {
+      return true;
+    }
+
+    /// Always false.
+    bool
+    is_linear() const override
+    {
+      return false;
+    }
+
+    /**
+     * Return mapping at deformation gradient @p F from the state
+     * @p committed (a virgin state if nullptr); writes the updated state to
+     * @p trial (if not nullptr), the first Piola-Kirchhoff stress @p P and
+     * the consistent tangent @p A (A[i][J][k][L] = dP_iJ/dF_kL).
+     */
+    void
+    evaluate(const Tensor<2, 3>  &F,
+             const MaterialState *committed,
+             MaterialState       *trial,
+             Tensor<2, 3>        &P,
+             Tensor<4, 3>        &A) const override;
+
+    /// Young's modulus (MPa).
+    double
+    youngs_modulus() const override
+    {
+      return parameters.E;
+    }
+
+    /// The parameters this law was constructed with.
+    const J2Parameters &
+    get_parameters() const
+    {
+      return parameters;
+    }
+
+    /// Yield stress sigma_y(eps_p) (MPa); eps_p is clamped to >= 0.
+    double
+    yield_stress(const double eps_p) const;
+
+    /// Hardening modulus d sigma_y / d eps_p (MPa), evaluated at
+    /// max(eps_p, 1e-12) so that it stays finite for the power law with
+    /// n < 1.
+    double
+    hardening_modulus(const double eps_p) const;
+
+  private:
+    /// Plastic multiplier (increment of eps_p) of the radial return for a
+    /// trial von Mises stress @p q_trial > sigma_y(@p eps_p_old).
+    double
+    plastic_increment(const double q_trial, const double eps_p_old) const;
+
+    /// The material parameters.
+    const J2Parameters parameters;
+    /// Bulk modulus K = E / (3 (1 - 2 nu)) (MPa).
+    const double kappa;
+    /// Shear modulus mu = E / (2 (1 + nu)) (MPa).
+    const double mu;
+  };
+} // namespace densify

@@ -1,0 +1,112 @@
+// The constitutive-law interface of Densify: stress and tangent from the deformation gradient.
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <memory>
+#include <string>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /**
+   * State kept at one quadrature point between load steps. Only materials
+   * whose needs_history() returns true get one; an elastic scene allocates
+   * none.
+   */
+  struct MaterialState
+  {
+    /// Inverse plastic right Cauchy-Green tensor C_p^{-1} (identity at start).
+    Tensor<2, 3> Cp_inv = unit_symmetric_tensor<3>();
+    /// Accumulated equivalent plastic strain (dimensionless).
+    double eps_p = 0.;
+  };
+
+  /**
+   * A constitutive law in total-Lagrangian form: given the deformation
+   * gradient F at a quadrature point (and the committed history, if any),
+   * return the first Piola-Kirchhoff stress P (MPa) and the tangent
+   * A = dP/dF (MPa). Implementations are stateless apart from their
+   * parameters, so one object serves every quadrature point of a particle.
+   */
+  class Material
+  {
+  public:
+    virtual ~Material() = default;
+
+    /// Name shown in the log, e.g. "linear elastic (Sn)".
+    virtual std::string
+    name() const = 0;
+
+    /// True if the law needs a MaterialState per quadrature point.
+    virtual bool
+    needs_history() const
+    {
+      return false;
+    }
+
+    /// True if the law is linear in F (then one Newton iteration suffices
+    /// when nothing else is nonlinear).
+    virtual bool
+    is_linear() const
+    {
+      return false;
+    }
+
+    /**
+     * Evaluate P(F) and A = dP/dF. @p committed is the state at the end of
+     * the last converged step and @p trial receives the updated state; both
+     * are nullptr when needs_history() is false.
+     */
+    virtual void
+    evaluate(const Tensor<2, 3>  &F,
+             const MaterialState *committed,
+             MaterialState       *trial,
+             Tensor<2, 3>        &P,
+             Tensor<4, 3>        &A) const = 0;
+
+    /// Young's modulus (MPa), used to scale penalties and stabilisation.
+    virtual double
+    youngs_modulus() const = 0;
+  };
+
+  /**
+   * Small-strain isotropic linear elasticity: P = lambda tr(eps) I + 2 mu eps
+   * with eps = sym(F - I). Valid for small displacements and rotations.
+   */
+  class LinearElastic : public Material
+  {
+  public:
+    /// @p E Young's modulus (MPa), @p nu Poisson's ratio, @p label shown in the log.
+    LinearElastic(const double E, const double nu, const std::string &label);
+
+    std::string
+    name() const override;
+
+    bool
+    is_linear() const override
+    {
+      return true;
+    }
+
+    void
+    evaluate(const Tensor<2, 3>  &F,
+             const MaterialState *committed,
+             MaterialState       *trial,
+             Tensor<2, 3>        &P,
+             Tensor<4, 3>        &A) const override;
+
+    double
+    youngs_modulus() const override
+    {
+      return E;
+    }
+
+  private:
+    const double E, nu, lambda, mu;
+    const std::string label;
+    Tensor<4, 3>      C;
+  };
+} // namespace densify

@@ -1,0 +1,159 @@
+// All run-time parameters of Densify, one struct per .prm subsection.
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /// Subsection "Particles": where the particles are and what they are made of.
+  struct ParticleParameters
+  {
+    /// Centres "x,y,z; x,y,z; ..." (mm); ignored if a particle file is given.
+    std::string centres = "0,0,1.25";
+    /// Diameters (mm): one value for all particles or one per particle.
+    std::string diameters = "2.5";
+    /// Materials: one name for all particles or one per particle.
+    std::string materials = "Sn";
+    /// CSV file x,y,z,diameter[,material]; relative to the working directory.
+    std::string particle_file = "";
+  };
+
+  /// Subsection "Mesh": how each particle is meshed and discretised.
+  struct MeshParameters
+  {
+    /// Target element size (mm).
+    double element_size = 0.3;
+    /// Refinement directions "x,y,z; ..." from each particle's centre.
+    std::string refinement_directions = "";
+    /// Element size at the refinement points (mm).
+    double refined_element_size = 0.1;
+    /// Growth rate of the element size away from refinement points (-).
+    double growth = 0.5;
+    /// Polynomial degree of the displacement (1 or 2).
+    unsigned int degree = 1;
+  };
+
+  /// Subsection "Material": elastic constants of the material "custom".
+  struct MaterialParameters
+  {
+    /// Young's modulus of "custom" (MPa).
+    double youngs_modulus = 43120.;
+    /// Poisson's ratio of "custom" (-).
+    double poissons_ratio = 0.3;
+  };
+
+  /// Subsection "Tools": the rigid upper punch, lower punch and die wall.
+  struct ToolParameters
+  {
+    /// Lower punch present?
+    bool lower_enabled = true;
+    /// Lower punch face height (mm).
+    double lower_position = 0.;
+    /// Upper punch present?
+    bool upper_enabled = true;
+    /// Upper punch face height at t = 0 (mm), or "auto": top of the highest particle.
+    std::string upper_initial_position = "auto";
+    /// Downward displacement history "t:d, t:d, ..." (s:mm), piecewise linear.
+    std::string upper_displacement = "0:0, 1:0.1";
+    /// Die wall present?
+    bool die_enabled = false;
+    /// Inner die diameter (mm).
+    double die_diameter = 20.;
+  };
+
+  /// Subsection "Contact": augmented-Lagrangian normal contact.
+  struct ContactParameters
+  {
+    /// Penalty = factor * E / h (MPa/mm), h the smallest element size.
+    double penalty_factor = 1.;
+    /// Largest penetration accepted at the end of a step (mm).
+    double gap_tolerance = 1e-4;
+    /// Maximum multiplier updates per step.
+    unsigned int max_augmentations = 20;
+  };
+
+  /// Subsection "Time stepping": load steps.
+  struct TimeParameters
+  {
+    /// End time (s).
+    double end_time = 1.;
+    /// Number of load steps.
+    unsigned int n_steps = 10;
+  };
+
+  /// Subsection "Solver": Newton, linear solver and stabilisation.
+  struct SolverParameters
+  {
+    /// "cg-amg" or "direct".
+    std::string linear_solver = "cg-amg";
+    /// Relative tolerance of the linear solver.
+    double linear_tolerance = 1e-8;
+    /// Maximum CG iterations.
+    unsigned int max_linear_iterations = 2000;
+    /// Relative residual tolerance of Newton.
+    double newton_tolerance = 1e-9;
+    /// Maximum Newton iterations per augmentation.
+    unsigned int max_newton_iterations = 30;
+    /// Stabilisation factor beta: tangent += beta E / D^2 M (tangent only).
+    double stabilisation = 1e-6;
+  };
+
+  /// Subsection "Output": where and what to write.
+  struct OutputParameters
+  {
+    /// Output directory; relative to the working directory.
+    std::string directory = "output";
+    /// Write graphics every this many steps (0: never).
+    unsigned int interval = 1;
+    /// Print the Newton iterations of every step.
+    bool verbose = false;
+  };
+
+  /// Every parameter of a run.
+  struct Parameters
+  {
+    ParticleParameters particles;
+    MeshParameters     mesh;
+    MaterialParameters material;
+    ToolParameters     tools;
+    ContactParameters  contact;
+    TimeParameters     time;
+    SolverParameters   solver;
+    OutputParameters   output;
+
+    /// Declare every entry (bound to the members above) in @p prm.
+    void
+    declare(ParameterHandler &prm);
+  };
+
+  /**
+   * Read @p filename into @p prm (declared by Parameters::declare) and apply
+   * the overrides "Sub/Sub/Name=value" in order. Throws std::runtime_error with
+   * a one-line message naming the file, line or entry on any problem.
+   */
+  void
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &filename,
+                  const std::vector<std::string> &overrides);
+
+  /// Parse "x,y,z; x,y,z" into points; @p what names the entry for errors.
+  std::vector<Point<3>>
+  parse_points(const std::string &text, const std::string &what);
+
+  /// Parse "t:v, t:v" into a sorted table; @p what names the entry for errors.
+  std::vector<std::pair<double, double>>
+  parse_table(const std::string &text, const std::string &what);
+
+  /// Piecewise-linear interpolation in @p table (constant beyond its ends).
+  double
+  interpolate(const std::vector<std::pair<double, double>> &table,
+              const double                                  t);
+} // namespace densify

@@ -1,0 +1,64 @@
+// One row of statistics per load step, and the statistics.csv writer.
+#pragma once
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace densify
+{
+  /// What happened in one load step (forces in N, positive in compression).
+  struct StepStatistics
+  {
+    unsigned int step = 0;
+    /// Time at the end of the step (s).
+    double time = 0.;
+    /// Downward displacement of the upper punch (mm).
+    double punch_displacement = 0.;
+    double upper_punch_force  = 0.;
+    double lower_punch_force  = 0.;
+    /// Axial force the die wall takes (N); upper = lower + die wall.
+    double die_wall_force = 0.;
+    /// Particle volume / (die area x punch gap); NaN without die or punches.
+    double relative_density = 0.;
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
+    /// Wall time since the start of the run (s).
+    double wall_seconds = 0.;
+    /// Sum of the normal (radial) contact forces on the die wall (N).
+    double die_wall_radial_force = 0.;
+    /// l1 norm of the force the stabilisation put into the last Newton
+    /// correction (N); it is not part of the converged equilibrium.
+    double stabilisation_force = 0.;
+    /// Largest penetration into a tool at the end of the step (mm).
+    double max_penetration = 0.;
+    /// Multiplier updates in this step.
+    unsigned int augmentations = 0;
+    /// Total particle volume (mm^3).
+    double particle_volume = 0.;
+    /// Wall time of this step (s).
+    double step_seconds = 0.;
+  };
+
+  /**
+   * Writes statistics.csv: a header line, then one row per step, flushed
+   * at once so that the file is valid whenever a run stops.
+   */
+  class StatisticsWriter
+  {
+  public:
+    /// Open (truncate) @p filename and write the header.
+    explicit StatisticsWriter(const std::string &filename);
+
+    /// Append one row.
+    void
+    write(const StepStatistics &s);
+
+    /// The header line (column names, comma-separated).
+    static std::string
+    header();
+
+  private:
+    std::ofstream out;
+  };
+} // namespace densify

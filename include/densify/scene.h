@@ -1,0 +1,30 @@
+// The scene of a run as read from the parameters: particles, tool positions, load history.
+#pragma once
+
+#include <densify/geometry/particles.h>
+#include <densify/parameters.h>
+
+#include <utility>
+#include <vector>
+
+namespace densify
+{
+  /// Everything about a scene that is known before meshing.
+  struct Scene
+  {
+    /// The particles (from Particles/Centres or the particle file).
+    std::vector<Particle> particles;
+    /// Height of the upper punch face at t = 0 (mm).
+    double upper_initial = 0.;
+    /// Downward punch displacement against time (s, mm).
+    std::vector<std::pair<double, double>> punch_table;
+  };
+
+  /**
+   * Build the scene from @p prm and check it: particle data, materials,
+   * particles inside the container and not overlapping, the punch table.
+   * Throws std::runtime_error with a one-line message naming the parameter.
+   */
+  Scene
+  build_scene(const Parameters &prm);
+} // namespace densify

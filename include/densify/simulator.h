@@ -1,0 +1,166 @@
+// The quasi-static compaction driver: mesh, DoFs, Newton per load step, contact, output.
+#pragma once
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/distributed/shared_tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_fe.h>
+
+#include <densify/contact/tool_contact.h>
+#include <densify/geometry/particles.h>
+#include <densify/material/material.h>
+#include <densify/parameters.h>
+#include <densify/postprocess/statistics.h>
+#include <densify/solvers/linear_solver.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace densify
+{
+  /**
+   * Runs one scene: builds the multi-body mesh of all particles, then for each
+   * load step moves the upper punch and solves the quasi-static equilibrium
+   * by Newton's method with line search inside an augmented-Lagrangian loop
+   * for the tool contact. Writes statistics.csv, log.txt and graphics into
+   * the output directory. Every MPI rank holds the whole mesh
+   * (parallel::shared::Triangulation, METIS partition) and assembles its own
+   * cells.
+   */
+  class Simulator
+  {
+  public:
+    /// Prepare a run (nothing is computed or written yet).
+    Simulator(const Parameters &parameters, const MPI_Comm comm);
+
+    /// Destructor; resets the timer so that an exception cannot deadlock.
+    ~Simulator();
+
+    /**
+     * Check the input, build the mesh and run every load step. Throws
+     * std::runtime_error with a one-line message on bad input or a failed
+     * solve; what was written before stays valid.
+     */
+    void
+    run();
+
+    /// Set up particles, mesh and system without solving (used by run()).
+    void
+    setup();
+
+    /// Statistics of the steps done so far.
+    const std::vector<StepStatistics> &
+    statistics() const
+    {
+      return step_statistics;
+    }
+
+    /// Current volume of each particle (mm^3), on every rank.
+    std::vector<double>
+    particle_volumes() const;
+
+    /// The particles of the scene.
+    const std::vector<Particle> &
+    get_particles() const
+    {
+      return particles;
+    }
+
+    /// Number of degrees of freedom.
+    types::global_dof_index
+    n_dofs() const
+    {
+      return dof_handler.n_dofs();
+    }
+
+    /// Rigid translation of each particle: its mean displacement (mm).
+    std::vector<Tensor<1, 3>>
+    particle_mean_displacements() const;
+
+  private:
+    /// Result of assemble().
+    struct AssemblyResult
+    {
+      ToolContactResult contact;
+      /// l2 norm of the out-of-balance force (N).
+      double residual_norm = 0.;
+      /// Scale for the relative Newton criterion (N).
+      double reference_norm = 0.;
+    };
+
+    void
+    setup_particles();
+    void
+    setup_mesh();
+    void
+    setup_system();
+    void
+    setup_stabilisation();
+
+    /// Residual (and tangent if @p with_matrix) at the current solution;
+    /// @p tangent_margin as in ToolContact::assemble().
+    AssemblyResult
+    assemble(const bool with_matrix, const double tangent_margin = 0.);
+
+    /// Newton with line search for fixed multipliers; the first tangent uses
+    /// the contact predictor @p margin (mm). Returns the number of Newton and
+    /// linear iterations; throws on failure.
+    std::pair<unsigned int, unsigned int>
+    solve_newton(const unsigned int step, const double margin);
+
+    /// Position of the upper punch face at time @p t (mm).
+    double
+    upper_punch_position(const double t) const;
+
+    /// Write the .pvtu of this step and rewrite the .pvd.
+    void
+    write_graphics(const unsigned int step, const double time);
+
+    /// Copy solution into the ghosted vector.
+    void
+    update_ghosts();
+
+    const Parameters &prm;
+    MPI_Comm          comm;
+    const unsigned int this_rank;
+    std::ofstream      log_file;
+    std::unique_ptr<std::ostream> tee;
+    ConditionalOStream pcout;
+    TimerOutput        timer;
+
+    std::vector<Particle>                        particles;
+    std::vector<std::shared_ptr<const Material>> particle_material;
+    double                                       upper_initial = 0.;
+    std::vector<std::pair<double, double>>       punch_table;
+    double                                       h_min = 0.;
+
+    parallel::shared::Triangulation<3> triangulation;
+    std::unique_ptr<FESystem<3>>       fe;
+    std::unique_ptr<MappingFE<3>>      mapping;
+    DoFHandler<3>                      dof_handler;
+    IndexSet                           locally_owned, locally_relevant;
+
+    TrilinosWrappers::SparseMatrix tangent, stabilisation;
+    TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual,
+      increment;
+
+    ToolContact                   tool_contact;
+    std::unique_ptr<LinearSolver> linear_solver;
+    double                        last_stabilisation_force = 0.;
+
+    std::vector<StepStatistics>                   step_statistics;
+    std::unique_ptr<StatisticsWriter>             statistics_writer;
+    std::vector<std::pair<double, std::string>> pvd_records;
+  };
+} // namespace densify

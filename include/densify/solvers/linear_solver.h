@@ -1,0 +1,60 @@
+// The linear solver of each Newton step: CG with ML AMG fed the rigid-body modes, or a direct solver.
+#pragma once
+
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/mapping.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /**
+   * Solves K x = b for the symmetric positive definite Newton tangent K.
+   * "cg-amg": Trilinos CG preconditioned by ML smoothed-aggregation AMG whose
+   * near-null space is the six rigid-body modes of 3D elasticity, given
+   * through ML's parameter list ("null space: type" = "pre-computed"), since
+   * deal.II 9.4 has no DoFTools::extract_rigid_body_modes. "direct": Amesos
+   * KLU.
+   */
+  class LinearSolver
+  {
+  public:
+    /// @p type "cg-amg" or "direct"; tolerance relative to |b|.
+    LinearSolver(const std::string &type,
+                 const double       tolerance,
+                 const unsigned int max_iterations);
+
+    /**
+     * Compute the rigid-body modes at the support points of the locally
+     * owned DoFs (call after every change of the DoF numbering).
+     */
+    void
+    setup_null_space(const DoFHandler<3> &dof_handler,
+                     const Mapping<3>    &mapping,
+                     const IndexSet      &locally_owned);
+
+    /// Solve; returns the number of linear iterations (1 for direct).
+    /// Throws std::runtime_error if CG does not converge.
+    unsigned int
+    solve(const TrilinosWrappers::SparseMatrix &matrix,
+          TrilinosWrappers::MPI::Vector        &x,
+          const TrilinosWrappers::MPI::Vector  &b);
+
+  private:
+    const std::string   type;
+    const double        tolerance;
+    const unsigned int  max_iterations;
+    /// Column-major: mode k of local row i at [k * n_local + i].
+    std::vector<double> null_space;
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+  };
+} // namespace densify

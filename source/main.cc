@@ -1,0 +1,133 @@
+// The densify executable: command line, parameter handling and error reporting.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <densify/parameters.h>
+#include <densify/scene.h>
+#include <densify/simulator.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  const char *usage =
+    "Usage:\n"
+    "  densify FILE.prm [--set \"Subsection/Name=value\"]...   run a scene\n"
+    "  densify --validate FILE.prm [--set ...]              check a scene "
+    "without running it\n"
+    "  densify --print-parameters                            print every "
+    "parameter with its documentation\n"
+    "  densify --help                                        this text\n"
+    "\n"
+    "Run in parallel with: mpirun -np N densify FILE.prm\n"
+    "--set overrides an entry of FILE.prm (repeatable); nested subsections "
+    "are separated by '/', e.g.\n"
+    "  densify prm/hertz.prm --set \"Tools/Upper punch/Displacement "
+    "history=0:0, 1:0.02\"\n"
+    "Exit codes: 0 success, 1 the run failed (e.g. Newton did not "
+    "converge), 2 bad input.\n";
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  using namespace densify;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  auto       fail = [&](const std::string &message, const int code) {
+    if (root)
+      std::cerr << "densify: error: " << message << std::endl;
+    return code;
+  };
+
+  std::string              filename;
+  std::vector<std::string> overrides;
+  bool validate_only = false, print_parameters = false;
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h")
+        {
+          if (root)
+            std::cout << usage;
+          return 0;
+        }
+      else if (arg == "--print-parameters")
+        print_parameters = true;
+      else if (arg == "--validate")
+        validate_only = true;
+      else if (arg == "--set")
+        {
+          if (i + 1 == argc)
+            return fail("--set needs an argument \"Subsection/Name=value\"",
+                        2);
+          overrides.emplace_back(argv[++i]);
+        }
+      else if (arg.rfind("--set=", 0) == 0)
+        overrides.push_back(arg.substr(6));
+      else if (arg.rfind("-", 0) == 0)
+        return fail("unknown option '" + arg + "' (densify --help)", 2);
+      else if (filename.empty())
+        filename = arg;
+      else
+        return fail("more than one parameter file ('" + filename + "', '" +
+                      arg + "')",
+                    2);
+    }
+
+  Parameters       parameters;
+  ParameterHandler prm;
+  parameters.declare(prm);
+  if (print_parameters)
+    {
+      if (root)
+        prm.print_parameters(std::cout,
+                             ParameterHandler::OutputStyle(
+                               ParameterHandler::PRM |
+                               ParameterHandler::KeepDeclarationOrder));
+      return 0;
+    }
+  if (filename.empty())
+    {
+      if (root)
+        std::cerr << usage;
+      return fail("no parameter file given", 2);
+    }
+
+  try
+    {
+      read_parameters(prm, filename, overrides);
+      build_scene(parameters);
+    }
+  catch (const std::exception &e)
+    {
+      return fail(e.what(), 2);
+    }
+  if (validate_only)
+    {
+      if (root)
+        std::cout << filename << ": valid" << std::endl;
+      return 0;
+    }
+
+  try
+    {
+      Simulator simulator(parameters, MPI_COMM_WORLD);
+      simulator.run();
+    }
+  catch (const std::exception &e)
+    {
+      return fail(e.what(), 1);
+    }
+  catch (const std::string &e) // gmsh throws strings
+    {
+      return fail("gmsh: " + e, 1);
+    }
+  catch (...)
+    {
+      return fail("unknown exception", 1);
+    }
+  return 0;
+}

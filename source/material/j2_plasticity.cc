@@ -1,0 +1,376 @@
+// Finite-strain J2 plasticity: return mapping and consistent tangent.
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <densify/material/j2_plasticity.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace densify
+{
+  namespace
+  {
+    /// z / (exp(z) - 1), accurate also for z -> 0 (where it is 1).
+    double
+    z_over_expm1(const double z)
+    {
+      if (std::abs(z) < 1e-3)
+        return 1. - z / 2. + z * z / 12. - z * z * z * z / 720.;
+      return z / std::expm1(z);
+    }
+  } // namespace
+
+
+
+  std::string
+  hardening_name(const Hardening hardening)
+  {
+    switch (hardening)
+      {
+        case Hardening::none:
+          return "perfectly plastic";
+        case Hardening::linear:
+          return "linear hardening";
+        case Hardening::power_law:
+          return "power-law hardening";
+      }
+    return "unknown hardening";
+  }
+
+
+
+  J2Parameters
+  material_preset(const std::string &name)
+  {
+    J2Parameters p;
+    p.hardening = Hardening::none;
+    p.label     = name;
+    if (name == "Sn")
+      {
+        // Tin as in the reference paper of the compaction benchmark.
+        p.E      = 43120.;
+        p.nu     = 0.3;
+        p.sigma0 = 31.;
+      }
+    else if (name == "Fe")
+      {
+        // Annealed high-purity iron. E and nu: room-temperature values of
+        // pure iron (ASM Handbook Vol. 2 / MatWeb "Iron, Fe": 211 GPa,
+        // 0.29). Yield stress: Callister, "Materials Science and
+        // Engineering" (Wiley), pure iron: sigma_y = 50 MPa (E = 208 GPa).
+        // Real yield stresses of pure iron depend strongly on purity and
+        // grain size.
+        p.E      = 211000.;
+        p.nu     = 0.29;
+        p.sigma0 = 50.;
+      }
+    else if (name == "Cu")
+      {
+        // Annealed high-purity (99.99 %) copper. E = 117 GPa: Smithells
+        // Metals Reference Book, 8th ed., Table 22.7 (annealed OFHC strip);
+        // nu = 0.34 (typical polycrystal value). Yield stress 33 MPa:
+        // MatWeb "Copper, Cu; Annealed" (33.3 MPa); Smithells lists a 0.2 %
+        // proof stress of 48 MPa for annealed OFHC strip, so the value
+        // depends on purity and grain size.
+        p.E      = 117000.;
+        p.nu     = 0.34;
+        p.sigma0 = 33.;
+      }
+    else if (name == "custom")
+      throw std::invalid_argument(
+        "material 'custom' has no preset: give E, nu and sigma0 explicitly");
+    else
+      throw std::invalid_argument("unknown material '" + name +
+                                  "': use one of Sn, Fe, Cu, custom");
+    return p;
+  }
+
+
+
+  J2Plasticity::J2Plasticity(const J2Parameters &parameters)
+    : parameters(parameters)
+    , kappa(parameters.E / (3. * (1. - 2. * parameters.nu)))
+    , mu(parameters.E / (2. * (1. + parameters.nu)))
+  {
+    const auto fail = [&](const std::string &what) {
+      throw std::invalid_argument("J2 plasticity (" + parameters.label +
+                                  "): " + what);
+    };
+    if (!(parameters.E > 0.))
+      fail("Young's modulus E must be > 0");
+    if (!(parameters.nu > -1. && parameters.nu < 0.5))
+      fail("Poisson's ratio must lie in (-1, 0.5)");
+    if (!(parameters.sigma0 >= 0.))
+      fail("yield stress sigma0 must be >= 0");
+    if (parameters.hardening == Hardening::none && !(parameters.sigma0 > 0.))
+      fail("yield stress sigma0 must be > 0 without hardening");
+    if (parameters.hardening == Hardening::linear && !(parameters.H >= 0.))
+      fail("hardening modulus H must be >= 0");
+    if (parameters.hardening == Hardening::power_law &&
+        !(parameters.K >= 0. && parameters.n > 0.))
+      fail("power-law hardening needs K >= 0 and n > 0");
+  }
+
+
+
+  std::string
+  J2Plasticity::name() const
+  {
+    return "J2 finite strain (" + parameters.label + ", " +
+           hardening_name(parameters.hardening) + ")";
+  }
+
+
+
+  double
+  J2Plasticity::yield_stress(const double eps_p) const
+  {
+    const double e = std::max(eps_p, 0.);
+    switch (parameters.hardening)
+      {
+        case Hardening::none:
+          return parameters.sigma0;
+        case Hardening::linear:
+          return parameters.sigma0 + parameters.H * e;
+        case Hardening::power_law:
+          return parameters.sigma0 + parameters.K * std::pow(e, parameters.n);
+      }
+    return parameters.sigma0;
+  }
+
+
+
+  double
+  J2Plasticity::hardening_modulus(const double eps_p) const
+  {
+    switch (parameters.hardening)
+      {
+        case Hardening::none:
+          return 0.;
+        case Hardening::linear:
+          return parameters.H;
+        case Hardening::power_law:
+          {
+            const double e = std::max(eps_p, 1e-12);
+            return parameters.n * parameters.K * std::pow(e, parameters.n - 1.);
+          }
+      }
+    return 0.;
+  }
+
+
+
+  double
+  J2Plasticity::plastic_increment(const double q_trial,
+                                  const double eps_p_old) const
+  {
+    switch (parameters.hardening)
+      {
+        case Hardening::none:
+          return (q_trial - parameters.sigma0) / (3. * mu);
+        case Hardening::linear:
+          return (q_trial - yield_stress(eps_p_old)) / (3. * mu + parameters.H);
+        case Hardening::power_law:
+          break;
+      }
+
+    // Power law: r(dg) = q_trial - 3 mu dg - sigma_y(eps_p_old + dg) = 0.
+    // r is strictly decreasing, r(0) > 0 and r(hi) <= 0 since
+    // sigma_y >= sigma0; Newton safeguarded by bisection on [lo, hi].
+    double lo = 0., hi = (q_trial - parameters.sigma0) / (3. * mu);
+    double dg = 0.;
+    for (unsigned int it = 0; it < 200; ++it)
+      {
+        const double r = q_trial - 3. * mu * dg - yield_stress(eps_p_old + dg);
+        if (std::abs(r) <= 1e-13 * q_trial)
+          return dg;
+        if (r > 0.)
+          lo = dg;
+        else
+          hi = dg;
+        if (hi - lo <= 1e-15 * hi)
+          return dg;
+        double next = dg + r / (3. * mu + hardening_modulus(eps_p_old + dg));
+        if (!(next > lo && next <= hi))
+          next = 0.5 * (lo + hi);
+        dg = next;
+      }
+    throw std::runtime_error("J2 plasticity (" + parameters.label +
+                             "): power-law return mapping did not converge");
+  }
+
+
+
+  void
+  J2Plasticity::evaluate(const Tensor<2, 3>  &F,
+                         const MaterialState *committed,
+                         MaterialState       *trial,
+                         Tensor<2, 3>        &P,
+                         Tensor<4, 3>        &A) const
+  {
+    const double J = determinant(F);
+    if (!(J > 0.))
+      throw std::domain_error("J2 plasticity: det F = " + std::to_string(J) +
+                              " <= 0 (inverted element)");
+
+    static const MaterialState virgin;
+    const MaterialState       &old = committed ? *committed : virgin;
+
+    // Trial elastic left Cauchy-Green tensor be_tr = F Cp^{-1} F^T and its
+    // spectral decomposition be_tr = sum_a x_a n_a (x) n_a.
+    const Tensor<2, 3> Finv = invert(F);
+    const Tensor<2, 3> G    = F * old.Cp_inv;
+    const auto         eig  = eigenvectors(symmetrize(G * transpose(F)),
+                                  SymmetricTensorEigenvectorMethod::jacobi);
+
+    double Q[3][3]; // Q[i][a] = (n_a)_i
+    double x[3], eps[3];
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        x[a] = eig[a].first;
+        if (!(x[a] > 0.))
+          throw std::domain_error("J2 plasticity: be is not positive "
+                                  "definite (extreme distortion)");
+        eps[a] = 0.5 * std::log(x[a]);
+        for (unsigned int i = 0; i < 3; ++i)
+          Q[i][a] = eig[a].second[i];
+      }
+
+    // Trial Kirchhoff stress in principal logarithmic space.
+    const double tr_eps = eps[0] + eps[1] + eps[2];
+    const double p      = kappa * tr_eps;
+    double       e_dev[3], s_trial[3];
+    double       s_norm2 = 0.;
+    for (unsigned int a = 0; a < 3; ++a)
+      {
+        e_dev[a]   = eps[a] - tr_eps / 3.;
+        s_trial[a] = 2. * mu * e_dev[a];
+        s_norm2 += s_trial[a] * s_trial[a];
+      }
+    const double q_trial = std::sqrt(1.5 * s_norm2);
+    const double sy_old  = yield_stress(old.eps_p);
+    const bool   plastic = (q_trial - sy_old > 1e-10 * sy_old + 1e-14 * mu);
+
+    // Radial return: s = (1 - 3 mu dg / q_trial) s_trial. D is the
+    // principal (3x3) consistent tangent d tau_a / d eps_trial_c.
+    double dg = 0., factor = 1.;
+    double D[3][3];
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int c = 0; c < 3; ++c)
+        D[a][c] = kappa + 2. * mu * ((a == c) - 1. / 3.);
+    if (plastic)
+      {
+        dg                = plastic_increment(q_trial, old.eps_p);
+        factor            = 1. - 3. * mu * dg / q_trial;
+        const double Hp   = hardening_modulus(old.eps_p + dg);
+        const double beta = 6. * mu * mu * (dg / q_trial - 1. / (3. * mu + Hp));
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int c = 0; c < 3; ++c)
+            D[a][c] = kappa + 2. * mu * factor * ((a == c) - 1. / 3.) +
+                      beta * s_trial[a] * s_trial[c] / s_norm2;
+      }
+    const double mu_bar = mu * factor;
+
+    double tau[3];
+    for (unsigned int a = 0; a < 3; ++a)
+      tau[a] = p + factor * s_trial[a];
+
+    // V = Q^T F^{-T}, U = Cp^{-1} F^T Q = G^T Q.
+    double V[3][3], U[3][3];
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int J_ = 0; J_ < 3; ++J_)
+        {
+          double v = 0., u = 0.;
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              v += Q[j][a] * Finv[J_][j];
+              u += G[j][J_] * Q[j][a];
+            }
+          V[a][J_] = v;
+          U[J_][a] = u;
+        }
+
+    // P = tau F^{-T} = sum_a tau_a n_a (x) (F^{-1} n_a).
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int J_ = 0; J_ < 3; ++J_)
+        P[i][J_] = tau[0] * Q[i][0] * V[0][J_] + tau[1] * Q[i][1] * V[1][J_] +
+                   tau[2] * Q[i][2] * V[2][J_];
+
+    // Derivative of the isotropic function tau(be_tr) in the principal
+    // basis: d tau'_aa = sum_c D_ac / (2 x_c) d be'_cc and, for a != b,
+    // d tau'_ab = theta_ab d be'_ab with theta_ab = (tau_a - tau_b) /
+    // (x_a - x_b) = 2 mu_bar (eps_a - eps_b) / (x_a - x_b), evaluated
+    // without cancellation (limit mu_bar / x_b for equal stretches).
+    // With d be' = Q^T (dF G^T + G dF^T) Q the six distinct derivatives
+    // T^{ab}_kL = d tau'_ab / dF_kL are assembled, then
+    // A_iJkL = sum_ab Q_ia V_bJ T^{ab}_kL - P_iL F^{-1}_Jk.
+    constexpr unsigned int pair_a[6] = {0, 1, 2, 0, 0, 1};
+    constexpr unsigned int pair_b[6] = {0, 1, 2, 1, 2, 2};
+    double                 T[6][3][3], W[6][3][3];
+    for (unsigned int m = 0; m < 6; ++m)
+      {
+        const unsigned int a = pair_a[m], b = pair_b[m];
+        if (a == b)
+          {
+            double c[3];
+            for (unsigned int d = 0; d < 3; ++d)
+              c[d] = D[a][d] / x[d];
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                T[m][k][L] = c[0] * Q[k][0] * U[L][0] +
+                             c[1] * Q[k][1] * U[L][1] +
+                             c[2] * Q[k][2] * U[L][2];
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J_ = 0; J_ < 3; ++J_)
+                W[m][i][J_] = Q[i][a] * V[a][J_];
+          }
+        else
+          {
+            const double theta =
+              mu_bar * z_over_expm1(2. * (eps[a] - eps[b])) / x[b];
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                T[m][k][L] = theta * (Q[k][a] * U[L][b] + Q[k][b] * U[L][a]);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J_ = 0; J_ < 3; ++J_)
+                W[m][i][J_] = Q[i][a] * V[b][J_] + Q[i][b] * V[a][J_];
+          }
+      }
+
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int J_ = 0; J_ < 3; ++J_)
+        for (unsigned int k = 0; k < 3; ++k)
+          for (unsigned int L = 0; L < 3; ++L)
+            {
+              double v = -P[i][L] * Finv[J_][k];
+              for (unsigned int m = 0; m < 6; ++m)
+                v += W[m][i][J_] * T[m][k][L];
+              A[i][J_][k][L] = v;
+            }
+
+    // History: Cp^{-1} = F^{-1} be F^{-T} with be = exp(2 eps_e).
+    if (trial)
+      {
+        if (plastic)
+          {
+            double be_a[3];
+            for (unsigned int a = 0; a < 3; ++a)
+              be_a[a] = std::exp(2. * (tr_eps / 3. + factor * e_dev[a]));
+            // F^{-1} n_a = V_a (row a of V); Cp^{-1} = sum_a be_a V_a V_a.
+            for (unsigned int I = 0; I < 3; ++I)
+              for (unsigned int J_ = I; J_ < 3; ++J_)
+                {
+                  const double c = be_a[0] * V[0][I] * V[0][J_] +
+                                   be_a[1] * V[1][I] * V[1][J_] +
+                                   be_a[2] * V[2][I] * V[2][J_];
+                  trial->Cp_inv[I][J_] = c;
+                  trial->Cp_inv[J_][I] = c;
+                }
+            trial->eps_p = old.eps_p + dg;
+          }
+        else
+          *trial = old;
+      }
+  }
+} // namespace densify

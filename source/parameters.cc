@@ -1,0 +1,401 @@
+// Declaration, reading and overriding of Densify's parameters.
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <densify/parameters.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace densify
+{
+  void
+  Parameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Particles");
+    {
+      prm.add_parameter(
+        "Centres",
+        particles.centres,
+        "Particle centres 'x,y,z; x,y,z; ...' in mm (die axis = z axis). "
+        "Ignored when a particle file is given.");
+      prm.add_parameter(
+        "Diameters",
+        particles.diameters,
+        "Particle diameters in mm, > 0: one value for all particles, or a "
+        "comma-separated list with one value per centre.");
+      prm.add_parameter(
+        "Materials",
+        particles.materials,
+        "Particle materials (Sn, Fe, Cu or custom): one name for all "
+        "particles, or a comma-separated list with one name per centre. "
+        "Used where the particle file has no material column.");
+      prm.add_parameter(
+        "Particle file",
+        particles.particle_file,
+        "CSV file with one particle per line: x,y,z,diameter[,material] in "
+        "mm; '#' starts a comment; a header line is skipped. Relative paths "
+        "are relative to the working directory. Empty: use Centres.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Mesh");
+    {
+      prm.add_parameter("Element size",
+                        mesh.element_size,
+                        "Target tetrahedron edge length away from refinement "
+                        "points, in mm (> 0).",
+                        Patterns::Double(1e-6));
+      prm.add_parameter(
+        "Refinement directions",
+        mesh.refinement_directions,
+        "Directions 'x,y,z; x,y,z' from each particle's centre to surface "
+        "points where the mesh is refined (e.g. '0,0,1; 0,0,-1' for the "
+        "poles that touch the punches). Empty: uniform mesh.");
+      prm.add_parameter("Refined element size",
+                        mesh.refined_element_size,
+                        "Element size at the refinement points, in mm (> 0).",
+                        Patterns::Double(1e-6));
+      prm.add_parameter(
+        "Refinement growth",
+        mesh.growth,
+        "Growth of the element size with distance d (mm) from the nearest "
+        "refinement point: h = min(Element size, Refined element size + "
+        "growth * d); dimensionless, > 0.",
+        Patterns::Double(1e-3));
+      prm.add_parameter(
+        "Polynomial degree",
+        mesh.degree,
+        "Polynomial degree of the displacement on each tetrahedron: 1 (linear) "
+        "or 2 (quadratic).",
+        Patterns::Integer(1, 2));
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Material");
+    {
+      prm.add_parameter(
+        "Young's modulus",
+        material.youngs_modulus,
+        "Young's modulus of the material 'custom', in MPa (> 0). The presets "
+        "Sn, Fe and Cu carry their own values (doc/materials.md).",
+        Patterns::Double(1e-12));
+      prm.add_parameter("Poisson's ratio",
+                        material.poissons_ratio,
+                        "Poisson's ratio of the material 'custom' "
+                        "(dimensionless, -1 < nu < 0.5).",
+                        Patterns::Double(-0.999, 0.499));
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Tools");
+    {
+      prm.enter_subsection("Lower punch");
+      prm.add_parameter("Enabled",
+                        tools.lower_enabled,
+                        "Whether the rigid lower punch (plane z = Position, "
+                        "particles above it) takes part.");
+      prm.add_parameter("Position",
+                        tools.lower_position,
+                        "Height of the lower punch face, in mm. It does not "
+                        "move.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Upper punch");
+      prm.add_parameter("Enabled",
+                        tools.upper_enabled,
+                        "Whether the rigid upper punch (plane, particles "
+                        "below it) takes part.");
+      prm.add_parameter(
+        "Initial position",
+        tools.upper_initial_position,
+        "Height of the upper punch face at t = 0, in mm, or 'auto' for the "
+        "top of the highest particle.");
+      prm.add_parameter(
+        "Displacement history",
+        tools.upper_displacement,
+        "Downward displacement of the upper punch against time, as "
+        "'t:d, t:d, ...' pairs (s:mm), linearly interpolated and constant "
+        "beyond the last time. Positive values compress.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Die wall");
+      prm.add_parameter("Enabled",
+                        tools.die_enabled,
+                        "Whether the rigid cylindrical die wall (axis = z "
+                        "axis) takes part.");
+      prm.add_parameter("Diameter",
+                        tools.die_diameter,
+                        "Inner diameter of the die, in mm (> 0).",
+                        Patterns::Double(1e-6));
+      prm.leave_subsection();
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Contact");
+    {
+      prm.add_parameter(
+        "Penalty factor",
+        contact.penalty_factor,
+        "Augmented-Lagrangian penalty as a multiple of E/h (E the particle's "
+        "Young's modulus in MPa, h the smallest element size in mm); "
+        "dimensionless, > 0. Larger: fewer multiplier updates, worse "
+        "conditioning.",
+        Patterns::Double(1e-12));
+      prm.add_parameter(
+        "Gap tolerance",
+        contact.gap_tolerance,
+        "Largest penetration of a particle into a tool accepted at the end of "
+        "a step, in mm (> 0); multipliers are updated until it is met.",
+        Patterns::Double(1e-15));
+      prm.add_parameter("Maximum augmentations",
+                        contact.max_augmentations,
+                        "Maximum number of multiplier updates per load step.",
+                        Patterns::Integer(0, 1000));
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    {
+      prm.add_parameter("End time",
+                        time.end_time,
+                        "Time at the end of the run, in s (> 0); the process "
+                        "is quasi-static, time only orders the load.",
+                        Patterns::Double(1e-15));
+      prm.add_parameter("Number of steps",
+                        time.n_steps,
+                        "Number of equal load steps from t = 0 to the end "
+                        "time (>= 1).",
+                        Patterns::Integer(1));
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Solver");
+    {
+      prm.add_parameter(
+        "Linear solver",
+        solver.linear_solver,
+        "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
+        "the six rigid-body modes (scales to large problems); direct: "
+        "Amesos KLU (small problems only).",
+        Patterns::Selection("cg-amg|direct"));
+      prm.add_parameter("Linear tolerance",
+                        solver.linear_tolerance,
+                        "CG stops when the residual falls below this times "
+                        "the right-hand side norm (dimensionless).",
+                        Patterns::Double(1e-16, 1.));
+      prm.add_parameter("Maximum linear iterations",
+                        solver.max_linear_iterations,
+                        "Maximum number of CG iterations per Newton step.",
+                        Patterns::Integer(1));
+      prm.add_parameter(
+        "Newton tolerance",
+        solver.newton_tolerance,
+        "Newton stops when the l2 norm of the out-of-balance force falls "
+        "below this times the larger of the internal and contact force "
+        "norms (dimensionless).",
+        Patterns::Double(1e-16, 1.));
+      prm.add_parameter("Maximum Newton iterations",
+                        solver.max_newton_iterations,
+                        "Maximum Newton iterations per multiplier update.",
+                        Patterns::Integer(1));
+      prm.add_parameter(
+        "Stabilisation",
+        solver.stabilisation,
+        "beta >= 0: the Newton tangent (never the residual) gets beta*E/D^2 "
+        "times the mass matrix of each particle (E its Young's modulus, D its "
+        "diameter), so that a particle without contact does not make the "
+        "system singular. The converged state is not biased; the force it "
+        "contributes to the last Newton correction is reported. "
+        "Dimensionless.",
+        Patterns::Double(0.));
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    {
+      prm.add_parameter("Directory",
+                        output.directory,
+                        "Directory for statistics.csv, log.txt and graphics; "
+                        "relative to the working directory. Created if "
+                        "missing.");
+      prm.add_parameter("Interval",
+                        output.interval,
+                        "Write graphics (.pvtu + .pvd) every this many steps "
+                        "and at the last step; 0: never.",
+                        Patterns::Integer(0));
+      prm.add_parameter("Verbose",
+                        output.verbose,
+                        "Print the residual of every Newton iteration.");
+    }
+    prm.leave_subsection();
+  }
+
+
+
+  namespace
+  {
+    /// The additional-information text of a deal.II exception, on one line.
+    std::string
+    one_line(const ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string text = info.str(), out;
+      for (const char c : text)
+        if (c == '\n' || c == '\t')
+          out += ' ';
+        else
+          out += c;
+      // collapse runs of blanks
+      std::string collapsed;
+      for (const char c : out)
+        if (!(c == ' ' && !collapsed.empty() && collapsed.back() == ' '))
+          collapsed += c;
+      while (!collapsed.empty() && collapsed.back() == ' ')
+        collapsed.pop_back();
+      while (!collapsed.empty() && collapsed.front() == ' ')
+        collapsed.erase(collapsed.begin());
+      return collapsed;
+    }
+  } // namespace
+
+
+
+  void
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &filename,
+                  const std::vector<std::string> &overrides)
+  {
+    {
+      std::ifstream in(filename);
+      if (!in)
+        throw std::runtime_error("cannot open parameter file '" + filename +
+                                 "'");
+    }
+    try
+      {
+        prm.parse_input(filename, "", false, false);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw std::runtime_error(one_line(e) +
+                                 " (densify --print-parameters lists every "
+                                 "entry)");
+      }
+
+    for (const std::string &o : overrides)
+      {
+        const auto eq = o.find('=');
+        if (eq == std::string::npos)
+          throw std::runtime_error("--set '" + o +
+                                   "': expected 'Subsection/Name=value'");
+        const std::vector<std::string> path =
+          Utilities::split_string_list(o.substr(0, eq), '/');
+        const std::string value = Utilities::trim(o.substr(eq + 1));
+        if (path.empty())
+          throw std::runtime_error("--set '" + o + "': no entry name");
+        unsigned int depth = 0;
+        try
+          {
+            for (unsigned int i = 0; i + 1 < path.size(); ++i, ++depth)
+              prm.enter_subsection(path[i]);
+            prm.set(path.back(), value);
+          }
+        catch (const ExceptionBase &e)
+          {
+            for (; depth > 0; --depth)
+              prm.leave_subsection();
+            throw std::runtime_error("--set '" + o + "': " + one_line(e) +
+                                     " (densify --print-parameters lists "
+                                     "every entry)");
+          }
+        for (; depth > 0; --depth)
+          prm.leave_subsection();
+      }
+  }
+
+
+
+  std::vector<Point<3>>
+  parse_points(const std::string &text, const std::string &what)
+  {
+    std::vector<Point<3>> points;
+    for (const std::string &item : Utilities::split_string_list(text, ';'))
+      {
+        if (item.empty())
+          continue;
+        const std::vector<std::string> xyz =
+          Utilities::split_string_list(item, ',');
+        if (xyz.size() != 3)
+          throw std::runtime_error(what + ": '" + item +
+                                   "' is not a point 'x,y,z'");
+        Point<3> p;
+        for (unsigned int d = 0; d < 3; ++d)
+          try
+            {
+              p[d] = Utilities::string_to_double(xyz[d]);
+            }
+          catch (...)
+            {
+              throw std::runtime_error(what + ": '" + xyz[d] +
+                                       "' is not a number");
+            }
+        points.push_back(p);
+      }
+    return points;
+  }
+
+
+
+  std::vector<std::pair<double, double>>
+  parse_table(const std::string &text, const std::string &what)
+  {
+    std::vector<std::pair<double, double>> table;
+    for (const std::string &item : Utilities::split_string_list(text, ','))
+      {
+        const std::vector<std::string> tv =
+          Utilities::split_string_list(item, ':');
+        if (tv.size() != 2)
+          throw std::runtime_error(what + ": '" + item +
+                                   "' is not a pair 'time:value'");
+        try
+          {
+            table.emplace_back(Utilities::string_to_double(tv[0]),
+                               Utilities::string_to_double(tv[1]));
+          }
+        catch (...)
+          {
+            throw std::runtime_error(what + ": '" + item +
+                                     "' is not a pair of numbers");
+          }
+      }
+    if (table.empty())
+      throw std::runtime_error(what + ": empty table");
+    for (unsigned int i = 1; i < table.size(); ++i)
+      if (!(table[i].first > table[i - 1].first))
+        throw std::runtime_error(what + ": times must increase ('" + text +
+                                 "')");
+    return table;
+  }
+
+
+
+  double
+  interpolate(const std::vector<std::pair<double, double>> &table,
+              const double                                  t)
+  {
+    if (t <= table.front().first)
+      return table.front().second;
+    for (unsigned int i = 1; i < table.size(); ++i)
+      if (t <= table[i].first)
+        {
+          const double s = (t - table[i - 1].first) /
+                           (table[i].first - table[i - 1].first);
+          return (1. - s) * table[i - 1].second + s * table[i].second;
+        }
+    return table.back().second;
+  }
+} // namespace densify

@@ -1,0 +1,47 @@
+// The statistics.csv writer.
+#include <densify/postprocess/statistics.h>
+
+#include <iomanip>
+#include <stdexcept>
+
+namespace densify
+{
+  StatisticsWriter::StatisticsWriter(const std::string &filename)
+    : out(filename)
+  {
+    if (!out)
+      throw std::runtime_error("Output/Directory: cannot write '" + filename +
+                               "'");
+    out << header() << std::endl;
+  }
+
+
+
+  std::string
+  StatisticsWriter::header()
+  {
+    return "step,time,punch_displacement,upper_punch_force,lower_punch_force,"
+           "die_wall_force,relative_density,newton_iterations,"
+           "linear_iterations,wall_seconds,die_wall_radial_force,"
+           "stabilisation_force,max_penetration,augmentations,"
+           "particle_volume,step_seconds";
+  }
+
+
+
+  void
+  StatisticsWriter::write(const StepStatistics &s)
+  {
+    out << s.step << ',' << std::setprecision(10) << s.time << ','
+        << s.punch_displacement << ',' << s.upper_punch_force << ','
+        << s.lower_punch_force << ',' << s.die_wall_force << ','
+        << s.relative_density << ',' << s.newton_iterations << ','
+        << s.linear_iterations << ',' << std::setprecision(4)
+        << s.wall_seconds << ',' << std::setprecision(10)
+        << s.die_wall_radial_force << ',' << std::setprecision(4)
+        << s.stabilisation_force << ',' << s.max_penetration << ','
+        << s.augmentations << ',' << std::setprecision(10)
+        << s.particle_volume << ',' << std::setprecision(4) << s.step_seconds
+        << std::endl;
+  }
+} // namespace densify

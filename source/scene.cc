@@ -1,0 +1,99 @@
+// The scene of a run as read from the parameters: particles, tool positions, load history.
+#include <deal.II/base/utilities.h>
+
+#include <densify/material/factory.h>
+#include <densify/scene.h>
+
+#include <limits>
+#include <stdexcept>
+
+namespace densify
+{
+  Scene
+  build_scene(const Parameters &prm)
+  {
+    Scene scene;
+    std::vector<Particle> &particles = scene.particles;
+    const ParticleParameters &pp = prm.particles;
+    if (!pp.particle_file.empty())
+      particles = read_particle_csv(pp.particle_file, pp.materials);
+    else
+      {
+        const std::vector<Point<3>> centres =
+          parse_points(pp.centres, "Particles/Centres");
+        const std::vector<std::string> d_list =
+          Utilities::split_string_list(pp.diameters, ',');
+        const std::vector<std::string> m_list =
+          Utilities::split_string_list(pp.materials, ',');
+        if (d_list.size() != 1 && d_list.size() != centres.size())
+          throw std::runtime_error(
+            "Particles/Diameters: give one value or one per centre (" +
+            std::to_string(centres.size()) + "), not " +
+            std::to_string(d_list.size()));
+        if (m_list.size() != 1 && m_list.size() != centres.size())
+          throw std::runtime_error(
+            "Particles/Materials: give one name or one per centre (" +
+            std::to_string(centres.size()) + "), not " +
+            std::to_string(m_list.size()));
+        for (unsigned int i = 0; i < centres.size(); ++i)
+          {
+            Particle p;
+            p.centre = centres[i];
+            const std::string &d = d_list[d_list.size() == 1 ? 0 : i];
+            try
+              {
+                p.diameter = Utilities::string_to_double(d);
+              }
+            catch (...)
+              {
+                throw std::runtime_error("Particles/Diameters: '" + d +
+                                         "' is not a number");
+              }
+            p.material = m_list[m_list.size() == 1 ? 0 : i];
+            particles.push_back(p);
+          }
+      }
+    if (particles.empty())
+      throw std::runtime_error(
+        "no particles: set Particles/Centres or Particles/Particle file");
+
+    // the upper punch starts on the highest particle unless told otherwise
+    double top = -std::numeric_limits<double>::max();
+    for (const Particle &p : particles)
+      top = std::max(top, p.centre[2] + p.diameter / 2);
+    const std::string &init = prm.tools.upper_initial_position;
+    if (init == "auto")
+      scene.upper_initial = top;
+    else
+      try
+        {
+          scene.upper_initial = Utilities::string_to_double(init);
+        }
+      catch (...)
+        {
+          throw std::runtime_error("Tools/Upper punch/Initial position: '" +
+                                   init + "' is neither a number nor 'auto'");
+        }
+    scene.punch_table = parse_table(prm.tools.upper_displacement,
+                              "Tools/Upper punch/Displacement history");
+
+    Container container;
+    container.has_die    = prm.tools.die_enabled;
+    container.die_radius = prm.tools.die_diameter / 2;
+    container.has_lower  = prm.tools.lower_enabled;
+    container.lower_z    = prm.tools.lower_position;
+    container.has_upper  = prm.tools.upper_enabled;
+    container.upper_z    = scene.upper_initial;
+    if (container.has_lower && container.has_upper &&
+        !(scene.upper_initial > prm.tools.lower_position))
+      throw std::runtime_error(
+        "Tools/Upper punch/Initial position must be above Tools/Lower "
+        "punch/Position");
+    check_particles(particles, container, 1e-9 * top);
+
+    // unknown material names are input errors too
+    for (const Particle &p : particles)
+      create_material(p.material, prm.material);
+    return scene;
+  }
+} // namespace densify

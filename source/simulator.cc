@@ -1,0 +1,800 @@
+// The quasi-static compaction driver: mesh, DoFs, Newton per load step, contact, output.
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <densify/geometry/multi_body_mesh.h>
+#include <densify/material/factory.h>
+#include <densify/scene.h>
+#include <densify/simulator.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace densify
+{
+  namespace
+  {
+    /// A stream buffer writing to two others (console and log file).
+    class TeeBuffer : public std::streambuf
+    {
+    public:
+      TeeBuffer(std::streambuf *a, std::streambuf *b)
+        : a(a)
+        , b(b)
+      {}
+
+    protected:
+      int
+      overflow(int c) override
+      {
+        if (c == EOF)
+          return !EOF;
+        const int ra = a->sputc(c);
+        const int rb = (b != nullptr ? b->sputc(c) : c);
+        return (ra == EOF || rb == EOF) ? EOF : c;
+      }
+      int
+      sync() override
+      {
+        const int ra = a->pubsync();
+        const int rb = (b != nullptr ? b->pubsync() : 0);
+        return (ra == 0 && rb == 0) ? 0 : -1;
+      }
+
+    private:
+      std::streambuf *a, *b;
+    };
+
+    /// An ostream owning its TeeBuffer.
+    class TeeStream : public std::ostream
+    {
+    public:
+      TeeStream(std::ostream &a, std::ostream *b)
+        : std::ostream(nullptr)
+        , buffer(a.rdbuf(), b != nullptr ? b->rdbuf() : nullptr)
+      {
+        rdbuf(&buffer);
+      }
+
+    private:
+      TeeBuffer buffer;
+    };
+
+    /// Format seconds as "1h02m", "3m05s" or "4.2s".
+    std::string
+    format_seconds(const double s)
+    {
+      std::ostringstream out;
+      if (s >= 3600)
+        out << int(s / 3600) << "h" << std::setw(2) << std::setfill('0')
+            << int(std::fmod(s, 3600) / 60) << "m";
+      else if (s >= 60)
+        out << int(s / 60) << "m" << std::setw(2) << std::setfill('0')
+            << int(std::fmod(s, 60)) << "s";
+      else
+        out << std::fixed << std::setprecision(1) << s << "s";
+      return out.str();
+    }
+
+    /// Create the output directory (rank 0) and open its log.txt.
+    std::ofstream
+    open_log(const std::string &directory, const unsigned int rank)
+    {
+      std::ofstream log;
+      if (rank == 0)
+        {
+          std::error_code error;
+          std::filesystem::create_directories(directory, error);
+          log.open(directory + "/log.txt");
+          if (!log)
+            throw std::runtime_error("Output/Directory: cannot write '" +
+                                     directory + "/log.txt'");
+        }
+      return log;
+    }
+
+    /// Von Mises stress of the Cauchy stress belonging to P and F (MPa).
+    double
+    von_mises(const Tensor<2, 3> &P, const Tensor<2, 3> &F)
+    {
+      const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
+      const Tensor<2, 3> s =
+        sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
+      return std::sqrt(1.5 * scalar_product(s, s));
+    }
+  } // namespace
+
+
+
+  Simulator::Simulator(const Parameters &parameters, const MPI_Comm comm)
+    : prm(parameters)
+    , comm(comm)
+    , this_rank(Utilities::MPI::this_mpi_process(comm))
+    , log_file(open_log(parameters.output.directory, this_rank))
+    , tee(std::make_unique<TeeStream>(std::cout,
+                                      this_rank == 0 ? &log_file : nullptr))
+    , pcout(*tee, this_rank == 0)
+    , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , triangulation(comm,
+                    Triangulation<3>::none,
+                    false,
+                    parallel::shared::Triangulation<3>::partition_metis)
+    , dof_handler(triangulation)
+  {}
+
+
+
+  Simulator::~Simulator()
+  {
+    timer.reset();
+  }
+
+
+
+  void
+  Simulator::setup_particles()
+  {
+    Scene scene   = build_scene(prm);
+    particles     = std::move(scene.particles);
+    upper_initial = scene.upper_initial;
+    punch_table   = std::move(scene.punch_table);
+    for (const Particle &p : particles)
+      particle_material.push_back(create_material(p.material, prm.material));
+  }
+
+
+
+  void
+  Simulator::setup_mesh()
+  {
+    SphereMeshSpec spec;
+    spec.element_size = prm.mesh.element_size;
+    for (const Point<3> &d : parse_points(prm.mesh.refinement_directions,
+                                          "Mesh/Refinement directions"))
+      {
+        if (d.norm() == 0)
+          throw std::runtime_error(
+            "Mesh/Refinement directions: a direction must not be zero");
+        spec.refinement_directions.push_back(d);
+      }
+    spec.refined_element_size = prm.mesh.refined_element_size;
+    spec.growth               = prm.mesh.growth;
+    build_multi_body_triangulation(particles, spec, triangulation);
+    h_min = spec.element_size;
+    if (!spec.refinement_directions.empty())
+      h_min = std::min(h_min, spec.refined_element_size);
+  }
+
+
+
+  void
+  Simulator::setup_system()
+  {
+    fe = std::make_unique<FESystem<3>>(FE_SimplexP<3>(prm.mesh.degree), 3);
+    mapping = std::make_unique<MappingFE<3>>(FE_SimplexP<3>(1));
+    dof_handler.distribute_dofs(*fe);
+    locally_owned = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
+
+    TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    sp,
+                                    AffineConstraints<double>(),
+                                    false,
+                                    this_rank);
+    sp.compress();
+    tangent.reinit(sp);
+    stabilisation.reinit(sp);
+
+    solution.reinit(locally_owned, comm);
+    increment.reinit(locally_owned, comm);
+    residual.reinit(locally_owned, comm);
+    solution_ghosted.reinit(locally_owned, locally_relevant, comm);
+
+    // enabled tools and per-particle penalties
+    std::vector<RigidTool> tools;
+    if (prm.tools.lower_enabled)
+      tools.push_back({ToolKind::lower_punch, prm.tools.lower_position});
+    if (prm.tools.upper_enabled)
+      tools.push_back({ToolKind::upper_punch, upper_initial});
+    if (prm.tools.die_enabled)
+      tools.push_back({ToolKind::die_wall, prm.tools.die_diameter / 2});
+    std::vector<double> penalty;
+    for (const auto &m : particle_material)
+      penalty.push_back(prm.contact.penalty_factor * m->youngs_modulus() /
+                        h_min);
+    tool_contact.setup(dof_handler, tools, penalty, prm.mesh.degree + 1);
+
+    linear_solver = std::make_unique<LinearSolver>(
+      prm.solver.linear_solver,
+      prm.solver.linear_tolerance,
+      prm.solver.max_linear_iterations);
+    linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
+    setup_stabilisation();
+  }
+
+
+
+  void
+  Simulator::setup_stabilisation()
+  {
+    // beta E / D^2 times the mass matrix of each particle (tangent only)
+    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
+    FEValues<3>            fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_values | update_JxW_values);
+    const FEValuesExtractors::Vector     u(0);
+    const unsigned int                   n = fe->n_dofs_per_cell();
+    FullMatrix<double>                   cell_matrix(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int p = cell->material_id();
+          const double alpha   = prm.solver.stabilisation *
+                               particle_material[p]->youngs_modulus() /
+                               (particles[p].diameter * particles[p].diameter);
+          fe_values.reinit(cell);
+          cell_matrix = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                cell_matrix(i, j) += alpha * fe_values[u].value(i, q) *
+                                     fe_values[u].value(j, q) *
+                                     fe_values.JxW(q);
+          cell->get_dof_indices(dofs);
+          stabilisation.add(dofs, cell_matrix);
+        }
+    stabilisation.compress(VectorOperation::add);
+  }
+
+
+
+  void
+  Simulator::update_ghosts()
+  {
+    solution_ghosted = solution;
+  }
+
+
+
+  double
+  Simulator::upper_punch_position(const double t) const
+  {
+    return upper_initial - interpolate(punch_table, t);
+  }
+
+
+
+  Simulator::AssemblyResult
+  Simulator::assemble(const bool with_matrix, const double tangent_margin)
+  {
+    TimerOutput::Scope t(timer, with_matrix ? "Assembly: tangent+residual" :
+                                              "Assembly: residual");
+    update_ghosts();
+    residual = 0;
+    if (with_matrix)
+      tangent = 0;
+
+    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
+    FEValues<3>            fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
+    const unsigned int                   n   = fe->n_dofs_per_cell();
+    const unsigned int                   n_q = quadrature.size();
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_residual(n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<Tensor<2, 3>>            grad_u(n_q);
+    std::vector<Tensor<1, 3>>            grad_phi(n);
+    std::vector<Tensor<2, 3>>            A_grad(n);
+    std::vector<unsigned int>            component(n);
+    for (unsigned int i = 0; i < n; ++i)
+      component[i] = fe->system_to_component_index(i).first;
+    const FEValuesExtractors::Vector u(0);
+    Tensor<2, 3>                     P;
+    Tensor<4, 3>                     A;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[u].get_function_gradients(solution_ghosted, grad_u);
+          const Material &material = *particle_material[cell->material_id()];
+          cell_matrix              = 0;
+          cell_residual            = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+              material.evaluate(F, nullptr, nullptr, P, A);
+              const double JxW = fe_values.JxW(q);
+              // each shape function of the FESystem has one nonzero
+              // component c_i: grad phi_i = e_{c_i} (x) g_i
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  grad_phi[i] = fe_values.shape_grad(i, q);
+                  cell_residual(i) += (P[component[i]] * grad_phi[i]) * JxW;
+                }
+              if (!with_matrix)
+                continue;
+              // A_grad[j][k][J] = A[k][J][c_j][L] g_j[L]
+              for (unsigned int j = 0; j < n; ++j)
+                for (unsigned int k = 0; k < 3; ++k)
+                  for (unsigned int J = 0; J < 3; ++J)
+                    A_grad[j][k][J] = A[k][J][component[j]] * grad_phi[j];
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  cell_matrix(i, j) +=
+                    (A_grad[j][component[i]] * grad_phi[i]) * JxW;
+            }
+          cell->get_dof_indices(dofs);
+          residual.add(dofs, cell_residual);
+          if (with_matrix)
+            tangent.add(dofs, cell_matrix);
+        }
+    residual.compress(VectorOperation::add);
+
+    AssemblyResult result;
+    const double   internal_norm = residual.l2_norm();
+    {
+      TimerOutput::Scope tc(timer, "Assembly: tool contact");
+      result.contact = tool_contact.assemble(*mapping,
+                                             solution_ghosted,
+                                             residual,
+                                             with_matrix ? &tangent : nullptr,
+                                             tangent_margin);
+    }
+    residual.compress(VectorOperation::add);
+    if (with_matrix)
+      {
+        tangent.compress(VectorOperation::add);
+        if (prm.solver.stabilisation > 0)
+          tangent.add(1., stabilisation);
+      }
+    result.residual_norm = residual.l2_norm();
+    double contact_total = 0;
+    for (const double f : result.contact.normal_force)
+      contact_total += f;
+    result.reference_norm = std::max(internal_norm, contact_total);
+    return result;
+  }
+
+
+
+  std::pair<unsigned int, unsigned int>
+  Simulator::solve_newton(const unsigned int step, const double margin)
+  {
+    // absolute floor: a force far below anything the scene can carry
+    double E_max = 0, D_max = 0;
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        E_max = std::max(E_max, particle_material[p]->youngs_modulus());
+        D_max = std::max(D_max, particles[p].diameter);
+      }
+    const double floor = 1e-14 * E_max * D_max * D_max;
+    const double tol   = prm.solver.newton_tolerance;
+
+    unsigned int   linear_iterations = 0;
+    AssemblyResult current           = assemble(true, margin);
+    for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
+      {
+        const double target =
+          std::max(tol * current.reference_norm, floor);
+        if (prm.output.verbose)
+          pcout << "    newton " << it << ": |R| = " << std::scientific
+                << std::setprecision(3) << current.residual_norm
+                << " (target " << target << ")" << std::defaultfloat
+                << std::endl;
+        if (current.residual_norm <= target)
+          return {it, linear_iterations};
+        if (it == prm.solver.max_newton_iterations)
+          break;
+
+        {
+          TimerOutput::Scope t(timer, "Solve: linear");
+          residual *= -1.;
+          increment = 0;
+          linear_iterations +=
+            linear_solver->solve(tangent, increment, residual);
+        }
+        if (prm.solver.stabilisation > 0)
+          {
+            TrilinosWrappers::MPI::Vector f_s(locally_owned, comm);
+            stabilisation.vmult(f_s, increment);
+            last_stabilisation_force = f_s.l1_norm();
+          }
+
+        // backtracking line search on the residual norm
+        const double   r0 = current.residual_norm;
+        double         s  = 1.;
+        AssemblyResult trial;
+        bool           have_matrix = true;
+        for (unsigned int ls = 0;; ++ls)
+          {
+            solution.add(s, increment);
+            have_matrix = (ls == 0);
+            trial       = assemble(have_matrix);
+            if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
+              break;
+            solution.add(-s, increment);
+            s *= 0.5;
+          }
+        if (!std::isfinite(trial.residual_norm))
+          throw std::runtime_error(
+            "step " + std::to_string(step) +
+            ": the residual became NaN or infinite; try more steps "
+            "(Time stepping/Number of steps) or a smaller Contact/Penalty "
+            "factor");
+        current = have_matrix ? trial : assemble(true);
+      }
+    std::ostringstream msg;
+    msg << "step " << step << ": Newton did not converge in "
+        << prm.solver.max_newton_iterations
+        << " iterations (residual " << std::scientific << std::setprecision(2)
+        << current.residual_norm << " N, target "
+        << std::max(tol * current.reference_norm, floor)
+        << " N); try more steps (Time stepping/Number of steps) or raise "
+           "Solver/Maximum Newton iterations";
+    throw std::runtime_error(msg.str());
+  }
+
+
+
+  std::vector<double>
+  Simulator::particle_volumes() const
+  {
+    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
+    FEValues<3>            fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
+    std::vector<double>              volume(particles.size(), 0.);
+    TrilinosWrappers::MPI::Vector    ghosted(locally_owned,
+                                          locally_relevant,
+                                          comm);
+    ghosted = solution;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[u].get_function_gradients(ghosted, grad_u);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            volume[cell->material_id()] +=
+              determinant(unit_symmetric_tensor<3>() + grad_u[q]) *
+              fe_values.JxW(q);
+        }
+    Utilities::MPI::sum(volume, comm, volume);
+    return volume;
+  }
+
+
+
+  std::vector<Tensor<1, 3>>
+  Simulator::particle_mean_displacements() const
+  {
+    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
+    FEValues<3>            fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_values | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
+    std::vector<double>              sums(4 * particles.size(), 0.);
+    TrilinosWrappers::MPI::Vector    ghosted(locally_owned,
+                                          locally_relevant,
+                                          comm);
+    ghosted = solution;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[u].get_function_values(ghosted, u_q);
+          const unsigned int p = cell->material_id();
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              for (unsigned int d = 0; d < 3; ++d)
+                sums[4 * p + d] += u_q[q][d] * fe_values.JxW(q);
+              sums[4 * p + 3] += fe_values.JxW(q);
+            }
+        }
+    Utilities::MPI::sum(sums, comm, sums);
+    std::vector<Tensor<1, 3>> mean(particles.size());
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int d = 0; d < 3; ++d)
+        mean[p][d] = sums[4 * p + d] / sums[4 * p + 3];
+    return mean;
+  }
+
+
+
+  void
+  Simulator::write_graphics(const unsigned int step, const double time)
+  {
+    TimerOutput::Scope t(timer, "Output: graphics");
+    update_ghosts();
+
+    // scalar P1 fields: lumped L2 projections and nodal gaps
+    const FE_SimplexP<3> post_fe(1);
+    DoFHandler<3>        post_dof_handler(triangulation);
+    post_dof_handler.distribute_dofs(post_fe);
+    const IndexSet post_owned = post_dof_handler.locally_owned_dofs();
+    IndexSet       post_relevant;
+    DoFTools::extract_locally_relevant_dofs(post_dof_handler, post_relevant);
+    TrilinosWrappers::MPI::Vector vm_w(post_owned, comm), vm_m(post_owned, comm),
+      p_w(post_owned, comm), p_m(post_owned, comm), gap(post_owned, comm);
+
+    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
+    FEValues<3>                      fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_gradients | update_JxW_values);
+    FEValues<3>                      post_values(*mapping,
+                             post_fe,
+                             quadrature,
+                             update_values | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
+    std::vector<types::global_dof_index> post_dofs(post_fe.n_dofs_per_cell());
+    Vector<double> cell_w(post_dofs.size()), cell_m(post_dofs.size());
+    Tensor<2, 3>   P;
+    Tensor<4, 3>   A;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const typename DoFHandler<3>::active_cell_iterator post_cell(
+            &triangulation, cell->level(), cell->index(), &post_dof_handler);
+          fe_values.reinit(cell);
+          post_values.reinit(post_cell);
+          fe_values[u].get_function_gradients(solution_ghosted, grad_u);
+          cell_w = 0;
+          cell_m = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+              particle_material[cell->material_id()]->evaluate(
+                F, nullptr, nullptr, P, A);
+              const double vm = von_mises(P, F);
+              for (unsigned int i = 0; i < post_dofs.size(); ++i)
+                {
+                  const double v =
+                    post_values.shape_value(i, q) * post_values.JxW(q);
+                  cell_w(i) += v * vm;
+                  cell_m(i) += v;
+                }
+            }
+          post_cell->get_dof_indices(post_dofs);
+          vm_w.add(post_dofs, cell_w);
+          vm_m.add(post_dofs, cell_m);
+          // signed gap to the nearest tool at each vertex
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const types::global_dof_index i = post_cell->vertex_dof_index(v, 0);
+              if (!post_owned.is_element(i))
+                continue;
+              Point<3> x = cell->vertex(v);
+              for (unsigned int d = 0; d < 3; ++d)
+                x[d] += solution_ghosted(cell->vertex_dof_index(v, d));
+              double g = std::numeric_limits<double>::max();
+              for (const RigidTool &tool : tool_contact.tools())
+                {
+                  Tensor<1, 3> n;
+                  double       c;
+                  g = std::min(g, tool.gap(x, n, c));
+                }
+              gap(i) = (tool_contact.tools().empty() ? 0. : g);
+            }
+        }
+    tool_contact.project_pressure(
+      *mapping, solution_ghosted, post_dof_handler, p_w, p_m);
+    for (auto *v : {&vm_w, &vm_m, &p_w, &p_m})
+      v->compress(VectorOperation::add);
+    gap.compress(VectorOperation::insert);
+    for (const auto i : post_owned)
+      {
+        vm_w(i) = (vm_m(i) > 0 ? vm_w(i) / vm_m(i) : 0.);
+        p_w(i)  = (p_m(i) > 0 ? p_w(i) / p_m(i) : 0.);
+      }
+    vm_w.compress(VectorOperation::insert);
+    p_w.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector vm_g(post_owned, post_relevant, comm),
+      p_g(post_owned, post_relevant, comm), gap_g(post_owned, post_relevant, comm);
+    vm_g  = vm_w;
+    p_g   = p_w;
+    gap_g = gap;
+
+    Vector<float> particle_id(triangulation.n_active_cells()),
+      rank(triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        particle_id(cell->active_cell_index()) = cell->material_id();
+        rank(cell->active_cell_index())        = cell->subdomain_id();
+      }
+
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    data_out.add_data_vector(
+      solution_ghosted,
+      std::vector<std::string>(3, "displacement"),
+      DataOut<3>::type_dof_data,
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        3, DataComponentInterpretation::component_is_part_of_vector));
+    data_out.add_data_vector(post_dof_handler, vm_g, "von_mises");
+    data_out.add_data_vector(post_dof_handler, p_g, "contact_pressure");
+    data_out.add_data_vector(post_dof_handler, gap_g, "gap");
+    data_out.add_data_vector(particle_id, "particle_id");
+    data_out.add_data_vector(rank, "mpi_rank");
+    data_out.build_patches(*mapping, prm.mesh.degree);
+    const std::string dir = prm.output.directory + "/";
+    const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(dir, "solution", step, comm, 5);
+    pvd_records.emplace_back(time, pvtu);
+    if (this_rank == 0)
+      {
+        // write then rename, so that the .pvd is always complete
+        {
+          std::ofstream pvd(dir + "solution.pvd.tmp");
+          DataOutBase::write_pvd_record(pvd, pvd_records);
+        }
+        std::filesystem::rename(dir + "solution.pvd.tmp", dir + "solution.pvd");
+      }
+  }
+
+
+
+  void
+  Simulator::setup()
+  {
+    TimerOutput::Scope t(timer, "Setup");
+    setup_particles();
+    setup_mesh();
+    setup_system();
+  }
+
+
+
+  void
+  Simulator::run()
+  {
+    Timer wall;
+    setup();
+
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    pcout << "Densify: " << particles.size() << " particle(s), "
+          << triangulation.n_active_cells() << " tetrahedra, " << n_dofs()
+          << " DoFs (P" << prm.mesh.degree << "), " << n_ranks
+          << " MPI rank(s)" << std::endl;
+    pcout << "Active effects: " << particle_material[0]->name();
+    for (const RigidTool &tool : tool_contact.tools())
+      pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
+    pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
+
+    const double die_area =
+      numbers::PI * std::pow(prm.tools.die_diameter / 2, 2);
+    const bool has_density = prm.tools.die_enabled &&
+                             prm.tools.lower_enabled &&
+                             prm.tools.upper_enabled;
+    auto density = [&](const double volume, const double upper) {
+      return has_density ?
+               volume / (die_area * (upper - prm.tools.lower_position)) :
+               std::numeric_limits<double>::quiet_NaN();
+    };
+    {
+      double v0 = 0;
+      for (const double v : particle_volumes())
+        v0 += v;
+      if (has_density)
+        pcout << "Initial relative density " << std::fixed
+              << std::setprecision(2) << 100 * density(v0, upper_initial)
+              << " % (particle volume of the mesh " << std::setprecision(4)
+              << v0 << " mm^3)" << std::defaultfloat << std::endl;
+    }
+
+    if (this_rank == 0)
+      statistics_writer = std::make_unique<StatisticsWriter>(
+        prm.output.directory + "/statistics.csv");
+
+    const unsigned int n_steps = prm.time.n_steps;
+    for (unsigned int step = 1; step <= n_steps; ++step)
+      {
+        Timer          step_timer;
+        const double   time  = prm.time.end_time * step / n_steps;
+        const double   upper = upper_punch_position(time);
+        StepStatistics s;
+        s.step               = step;
+        s.time               = time;
+        s.punch_displacement = upper_initial - upper;
+        tool_contact.set_tool_position(ToolKind::upper_punch, upper);
+        const double punch_increment =
+          std::abs(s.punch_displacement -
+                   (step > 1 ? step_statistics.back().punch_displacement : 0.));
+        last_stabilisation_force = 0;
+
+        ToolContactResult contact;
+        for (unsigned int aug = 0;; ++aug)
+          {
+            // predictor margin: contacts within this step's punch travel
+            const auto [newton, linear] =
+              solve_newton(step, aug == 0 ? punch_increment : 0.);
+            s.newton_iterations += newton;
+            s.linear_iterations += linear;
+            {
+              TimerOutput::Scope t(timer, "Contact: multipliers");
+              contact = tool_contact.evaluate(*mapping, solution_ghosted);
+              if (contact.max_penetration <= prm.contact.gap_tolerance ||
+                  aug == prm.contact.max_augmentations)
+                break;
+              tool_contact.update_multipliers(*mapping, solution_ghosted);
+            }
+            ++s.augmentations;
+          }
+        if (contact.max_penetration > prm.contact.gap_tolerance)
+          pcout << "  warning: penetration " << contact.max_penetration
+                << " mm above Contact/Gap tolerance after "
+                << prm.contact.max_augmentations
+                << " augmentations; raise Contact/Maximum augmentations or "
+                   "Contact/Penalty factor"
+                << std::endl;
+
+        const auto upper_kind = static_cast<unsigned int>(ToolKind::upper_punch);
+        const auto lower_kind = static_cast<unsigned int>(ToolKind::lower_punch);
+        const auto die_kind   = static_cast<unsigned int>(ToolKind::die_wall);
+        s.upper_punch_force     = contact.normal_force[upper_kind];
+        s.lower_punch_force     = contact.normal_force[lower_kind];
+        s.die_wall_force        = contact.axial_force[die_kind];
+        s.die_wall_radial_force = contact.normal_force[die_kind];
+        s.stabilisation_force   = last_stabilisation_force;
+        s.max_penetration       = contact.max_penetration;
+        for (const double v : particle_volumes())
+          s.particle_volume += v;
+        s.relative_density = density(s.particle_volume, upper);
+
+        if (prm.output.interval > 0 &&
+            (step % prm.output.interval == 0 || step == n_steps))
+          write_graphics(step, time);
+
+        s.step_seconds = step_timer.wall_time();
+        s.wall_seconds = wall.wall_time();
+        step_statistics.push_back(s);
+        if (statistics_writer)
+          statistics_writer->write(s);
+
+        const double left = s.wall_seconds / step * (n_steps - step);
+        pcout << "step " << step << "/" << n_steps << "  t=" << std::setprecision(4)
+              << time << " s  punch " << s.punch_displacement
+              << " mm  F_upper " << std::setprecision(5)
+              << s.upper_punch_force << " N  F_lower " << s.lower_punch_force
+              << " N  F_die " << s.die_wall_radial_force << " N  F_stab "
+              << std::setprecision(2) << s.stabilisation_force << " N";
+        if (has_density)
+          pcout << "  density " << std::setprecision(4)
+                << 100 * s.relative_density << " %";
+        pcout << "  newton " << s.newton_iterations << " (cg "
+              << s.linear_iterations << ", aug " << s.augmentations << ")  "
+              << format_seconds(s.wall_seconds) << ", ~"
+              << format_seconds(left) << " left" << std::endl;
+      }
+    pcout << "Finished " << n_steps << " steps in "
+          << format_seconds(wall.wall_time()) << "; results in "
+          << prm.output.directory << "/" << std::endl;
+    timer.print_summary();
+  }
+} // namespace densify

@@ -1,0 +1,119 @@
+// The linear solver of each Newton step: CG with ML AMG fed the rigid-body modes, or a direct solver.
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <densify/solvers/linear_solver.h>
+
+#include <Teuchos_ParameterList.hpp>
+#include <ml_MultiLevelPreconditioner.h>
+#include <stdexcept>
+
+namespace densify
+{
+  LinearSolver::LinearSolver(const std::string &type,
+                             const double       tolerance,
+                             const unsigned int max_iterations)
+    : type(type)
+    , tolerance(tolerance)
+    , max_iterations(max_iterations)
+  {}
+
+
+
+  void
+  LinearSolver::setup_null_space(const DoFHandler<3> &dof_handler,
+                                 const Mapping<3>    &mapping,
+                                 const IndexSet      &locally_owned)
+  {
+    const FiniteElement<3> &fe      = dof_handler.get_fe();
+    const unsigned int      n_local = locally_owned.n_elements();
+    null_space.assign(6 * n_local, 0.);
+
+    // centre of the owned support points, to keep the rotation modes O(size)
+    FEValues<3> fe_values(mapping,
+                          fe,
+                          Quadrature<3>(fe.get_unit_support_points()),
+                          update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    std::vector<bool>                    done(n_local, false);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              if (!locally_owned.is_element(dofs[i]))
+                continue;
+              const unsigned int row = locally_owned.index_within_set(dofs[i]);
+              if (done[row])
+                continue;
+              done[row]          = true;
+              const unsigned int c = fe.system_to_component_index(i).first;
+              const Point<3>    &x = fe_values.quadrature_point(i);
+              // translations
+              null_space[c * n_local + row] = 1.;
+              // rotations about x, y, z: u = e_a x x
+              const double rot[3][3] = {{0., -x[2], x[1]},
+                                        {x[2], 0., -x[0]},
+                                        {-x[1], x[0], 0.}};
+              for (unsigned int a = 0; a < 3; ++a)
+                null_space[(3 + a) * n_local + row] = rot[a][c];
+            }
+        }
+  }
+
+
+
+  unsigned int
+  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                      TrilinosWrappers::MPI::Vector        &x,
+                      const TrilinosWrappers::MPI::Vector  &b)
+  {
+    SolverControl control(max_iterations,
+                          std::max(tolerance * b.l2_norm(), 1e-300));
+    if (type == "direct")
+      {
+        TrilinosWrappers::SolverDirect::AdditionalData data(false,
+                                                            "Amesos_Klu");
+        TrilinosWrappers::SolverDirect solver(control, data);
+        solver.solve(matrix, x, b);
+        return 1;
+      }
+
+    Teuchos::ParameterList list;
+    ML_Epetra::SetDefaults("SA", list);
+    list.set("ML output", 0);
+    list.set("max levels", 10);
+    list.set("aggregation: type", "Uncoupled");
+    list.set("aggregation: threshold", 0.);
+    list.set("smoother: type", "Chebyshev");
+    list.set("smoother: sweeps", 2);
+    list.set("coarse: type", "Amesos-KLU");
+    list.set("coarse: max size", 2000);
+    list.set("null space: type", "pre-computed");
+    list.set("null space: dimension", 6);
+    list.set("null space: vectors", null_space.data());
+    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(matrix.trilinos_matrix(), list);
+
+    TrilinosWrappers::SolverCG cg(control);
+    try
+      {
+        cg.solve(matrix, x, b, *amg);
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        throw std::runtime_error(
+          "CG did not converge in " + std::to_string(e.last_step) +
+          " iterations (residual " + std::to_string(e.last_residual) +
+          "); raise Solver/Maximum linear iterations or try "
+          "Solver/Linear solver = direct");
+      }
+    return control.last_step();
+  }
+} // namespace densify
