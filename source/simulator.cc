@@ -204,6 +204,7 @@ namespace densify
     solution.reinit(locally_owned, comm);
     increment.reinit(locally_owned, comm);
     residual.reinit(locally_owned, comm);
+    last_increment.reinit(locally_owned, comm);
     solution_ghosted.reinit(locally_owned, locally_relevant, comm);
 
     // enabled tools and per-particle penalties
@@ -723,9 +724,15 @@ namespace densify
         s.time               = time;
         s.punch_displacement = upper_initial - upper;
         tool_contact.set_tool_position(ToolKind::upper_punch, upper);
+        const double previous_displacement =
+          step > 1 ? step_statistics.back().punch_displacement : 0.;
         const double punch_increment =
-          std::abs(s.punch_displacement -
-                   (step > 1 ? step_statistics.back().punch_displacement : 0.));
+          std::abs(s.punch_displacement - previous_displacement);
+        // predictor: extrapolate the last step's increment in proportion
+        // to the punch travel
+        const TrilinosWrappers::MPI::Vector step_start = solution;
+        if (step > 1 && last_punch_increment > 0)
+          solution.add(punch_increment / last_punch_increment, last_increment);
         last_stabilisation_force = 0;
 
         ToolContactResult contact;
@@ -771,6 +778,10 @@ namespace densify
             (step % prm.output.interval == 0 || step == n_steps))
           write_graphics(step, time);
 
+        // the converged increment of this step, for the next predictor
+        last_increment = solution;
+        last_increment -= step_start;
+        last_punch_increment = punch_increment;
         s.step_seconds = step_timer.wall_time();
         s.wall_seconds = wall.wall_time();
         step_statistics.push_back(s);

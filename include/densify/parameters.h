@@ -73,7 +73,7 @@ namespace densify
   struct ContactParameters
   {
     /// Penalty = factor * E / h (MPa/mm), h the smallest element size.
-    double penalty_factor = 1.;
+    double penalty_factor = 100.;
     /// Largest penetration accepted at the end of a step (mm).
     double gap_tolerance = 1e-4;
     /// Maximum multiplier updates per step.

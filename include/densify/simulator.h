@@ -155,6 +155,11 @@ namespace densify
     TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual,
       increment;
 
+    /// Converged displacement increment of the last step and the punch
+    /// travel that caused it (for the extrapolating predictor).
+    TrilinosWrappers::MPI::Vector last_increment;
+    double                        last_punch_increment = 0.;
+
     ToolContact                   tool_contact;
     std::unique_ptr<LinearSolver> linear_solver;
     double                        last_stabilisation_force = 0.;

@@ -1,0 +1,61 @@
+# Bad input gives one clear error line naming the parameter, exit code 2, no crash or hang.
+set -u
+cd "$WORK_DIR"
+fails=0
+cat > good.prm <<'PRM'
+subsection Particles
+  set Centres = 0,0,1.25
+end
+subsection Output
+  set Directory = out
+end
+PRM
+sed 's/set Centres/set Centers/' good.prm > misspelt.prm
+
+# expect NAME PATTERN ARGS...: exit code 2 and exactly one line matching PATTERN
+expect() {
+  local name=$1 pattern=$2
+  shift 2
+  local out rc
+  out=$(timeout 60 "$@" 2>&1)
+  rc=$?
+  # mpirun adds its own banner: count only our lines there
+  local ours
+  ours=$(printf '%s\n' "$out" | grep -v -e '^---' -e '^mpirun' -e '^Primary job' \
+    -e '^a non-zero' -e '^the job' -e '^  Process name' -e '^  Exit code' \
+    -e '^$' -e 'returned$' -e 'job has been aborted' | wc -l)
+  if [ $rc -ne 2 ] || [ "$ours" -ne 1 ] ||
+    ! printf '%s' "$out" | grep -q -- "$pattern"; then
+    echo "FAIL $name: exit $rc, output:"
+    printf '%s\n' "$out"
+    fails=$((fails + 1))
+  else
+    echo "ok   $name: $out"
+  fi
+}
+
+expect "misspelt entry in file" "Centers" "$DENSIFY" misspelt.prm
+expect "misspelt entry in --set" "Diametr" "$DENSIFY" good.prm --set "Particles/Diametr=2"
+expect "misspelt subsection in --set" "Particle" "$DENSIFY" good.prm --set "Particle/Diameters=2"
+expect "invalid value" "Polynomial degree" "$DENSIFY" good.prm --set "Mesh/Polynomial degree=3"
+expect "negative diameter" "diameter -1" "$DENSIFY" good.prm --set "Particles/Diameters=-1"
+expect "overlapping particles" "overlap" "$DENSIFY" good.prm \
+  --set "Particles/Centres=0,0,1.25; 2,0,1.25"
+expect "particle outside the die" "Die wall/Diameter" "$DENSIFY" good.prm \
+  --set "Tools/Die wall/Enabled=true" --set "Tools/Die wall/Diameter=2"
+expect "particle below the lower punch" "Lower punch" "$DENSIFY" good.prm \
+  --set "Tools/Lower punch/Position=0.5"
+expect "missing particle file" "missing.csv" "$DENSIFY" good.prm \
+  --set "Particles/Particle file=missing.csv"
+expect "missing parameter file" "nothing.prm" "$DENSIFY" nothing.prm
+expect "unknown material" "unknown material 'Pb'" "$DENSIFY" good.prm --set "Particles/Materials=Pb"
+expect "unknown option" "unknown option" "$DENSIFY" good.prm --frobnicate
+expect "bad displacement table" "Displacement history" "$DENSIFY" good.prm \
+  --set "Tools/Upper punch/Displacement history=0:0, 0:1"
+expect "bad --set syntax" "Subsection/Name=value" "$DENSIFY" good.prm --set "Particles/Diameters"
+# under MPI: every rank stops, one message, no hang
+expect "overlap under mpirun -np 2" "overlap" "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" good.prm \
+  --set "Particles/Centres=0,0,1.25; 2,0,1.25"
+
+echo "$fails failure(s)"
+[ $fails -eq 0 ]

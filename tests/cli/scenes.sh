@@ -1,0 +1,20 @@
+# Every prm/*.prm runs in a shrunk form (coarse P1 mesh, two steps) and writes
+# statistics.csv with the documented columns plus a readable .pvd.
+set -eu
+cd "$WORK_DIR"
+columns="step,time,punch_displacement,upper_punch_force,lower_punch_force,die_wall_force,relative_density,newton_iterations,linear_iterations,wall_seconds"
+for scene in "$SOURCE_DIR"/prm/*.prm; do
+  name=$(basename "$scene" .prm)
+  echo "== $name"
+  "$DENSIFY" "$scene" \
+    --set "Output/Directory=out_$name" \
+    --set "Mesh/Polynomial degree=1" \
+    --set "Mesh/Element size=0.6" \
+    --set "Mesh/Refined element size=0.2" \
+    --set "Time stepping/Number of steps=2" > "log_$name.txt"
+  tail -n 3 "log_$name.txt"
+  head -n 1 "out_$name/statistics.csv" | grep -q "^$columns"
+  [ "$(wc -l < "out_$name/statistics.csv")" -eq 3 ]
+  grep -q "solution_00002.pvtu" "out_$name/solution.pvd"
+  [ -s "out_$name/log.txt" ]
+done
