@@ -44,14 +44,14 @@ namespace densify
       {
         if (c == EOF)
           return !EOF;
-        const int ra = a->sputc(c);
+        const int ra = (a != nullptr ? a->sputc(c) : c);
         const int rb = (b != nullptr ? b->sputc(c) : c);
         return (ra == EOF || rb == EOF) ? EOF : c;
       }
       int
       sync() override
       {
-        const int ra = a->pubsync();
+        const int ra = (a != nullptr ? a->pubsync() : 0);
         const int rb = (b != nullptr ? b->pubsync() : 0);
         return (ra == 0 && rb == 0) ? 0 : -1;
       }
@@ -64,9 +64,10 @@ namespace densify
     class TeeStream : public std::ostream
     {
     public:
-      TeeStream(std::ostream &a, std::ostream *b)
+      TeeStream(std::ostream *a, std::ostream *b)
         : std::ostream(nullptr)
-        , buffer(a.rdbuf(), b != nullptr ? b->rdbuf() : nullptr)
+        , buffer(a != nullptr ? a->rdbuf() : nullptr,
+                 b != nullptr ? b->rdbuf() : nullptr)
       {
         rdbuf(&buffer);
       }
@@ -121,12 +122,14 @@ namespace densify
 
 
 
-  Simulator::Simulator(const Parameters &parameters, const MPI_Comm comm)
+  Simulator::Simulator(const Parameters &parameters,
+                       const MPI_Comm    comm,
+                       const bool        console)
     : prm(parameters)
     , comm(comm)
     , this_rank(Utilities::MPI::this_mpi_process(comm))
     , log_file(open_log(parameters.output.directory, this_rank))
-    , tee(std::make_unique<TeeStream>(std::cout,
+    , tee(std::make_unique<TeeStream>(console ? &std::cout : nullptr,
                                       this_rank == 0 ? &log_file : nullptr))
     , pcout(*tee, this_rank == 0)
     , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
@@ -664,6 +667,8 @@ namespace densify
   void
   Simulator::setup()
   {
+    if (dof_handler.has_active_dofs())
+      return;
     TimerOutput::Scope t(timer, "Setup");
     setup_particles();
     setup_mesh();

@@ -32,7 +32,7 @@ main(int argc, char **argv)
                        "Tools/Die wall/Diameter=2.5",
                        "Tools/Upper punch/Displacement history=0:0, 1:0.25",
                        "Time stepping/Number of steps=3"});
-  Simulator simulator(parameters, MPI_COMM_WORLD);
+  Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 
   bool ok = true;

@@ -32,7 +32,7 @@ main(int argc, char **argv)
                        "Particles/Diameters=2.5, 1.5",
                        "Tools/Upper punch/Displacement history=0:0, 1:0.1",
                        "Time stepping/Number of steps=2"});
-  Simulator simulator(parameters, MPI_COMM_WORLD);
+  Simulator simulator(parameters, MPI_COMM_WORLD, false);
   const std::vector<double> v0 = [&] {
     simulator.setup();
     return simulator.particle_volumes();

@@ -22,8 +22,7 @@ main(int argc, char **argv)
                       prm,
                       "hertz.prm",
                       {"Output/Directory=output", "Output/Interval=0"});
-  std::ostringstream log;
-  Simulator          simulator(parameters, MPI_COMM_WORLD);
+  Simulator          simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 
   const double E = 43120., nu = 0.3, R = 1.25;

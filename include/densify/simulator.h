@@ -41,8 +41,11 @@ namespace densify
   class Simulator
   {
   public:
-    /// Prepare a run (nothing is computed or written yet).
-    Simulator(const Parameters &parameters, const MPI_Comm comm);
+    /// Prepare a run: create the output directory and its log.txt (nothing
+    /// is computed yet). The log goes to the console too if @p console.
+    Simulator(const Parameters &parameters,
+              const MPI_Comm    comm,
+              const bool        console = true);
 
     /// Destructor; resets the timer so that an exception cannot deadlock.
     ~Simulator();
@@ -55,7 +58,8 @@ namespace densify
     void
     run();
 
-    /// Set up particles, mesh and system without solving (used by run()).
+    /// Set up particles, mesh and system without solving; run() calls it
+    /// unless it was called before.
     void
     setup();
 
