@@ -191,6 +191,12 @@ namespace densify
                         "Maximum number of CG iterations per Newton step.",
                         Patterns::Integer(1));
       prm.add_parameter(
+        "Reuse AMG",
+        solver.reuse_amg,
+        "Keep the AMG hierarchy across Newton iterations and load steps until "
+        "CG needs more than twice the iterations it needed right after the "
+        "last setup (plus 10); false: a new setup for every linear solve.");
+      prm.add_parameter(
         "Newton tolerance",
         solver.newton_tolerance,
         "Newton stops when the l2 norm of the out-of-balance force falls "

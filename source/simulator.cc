@@ -227,7 +227,9 @@ namespace densify
     linear_solver = std::make_unique<LinearSolver>(
       prm.solver.linear_solver,
       prm.solver.linear_tolerance,
-      prm.solver.max_linear_iterations);
+      prm.solver.max_linear_iterations,
+      prm.solver.reuse_amg,
+      timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
     setup_stabilisation();
   }
@@ -412,7 +414,6 @@ namespace densify
           break;
 
         {
-          TimerOutput::Scope t(timer, "Solve: linear");
           residual *= -1.;
           increment = 0;
           linear_iterations +=

@@ -98,6 +98,8 @@ namespace densify
     double linear_tolerance = 1e-8;
     /// Maximum CG iterations.
     unsigned int max_linear_iterations = 2000;
+    /// Keep the AMG hierarchy across Newton iterations while it works.
+    bool reuse_amg = true;
     /// Relative residual tolerance of Newton.
     double newton_tolerance = 1e-9;
     /// Maximum Newton iterations per augmentation.

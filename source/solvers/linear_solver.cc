@@ -10,16 +10,21 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <ml_MultiLevelPreconditioner.h>
+#include <sstream>
 #include <stdexcept>
 
 namespace densify
 {
   LinearSolver::LinearSolver(const std::string &type,
                              const double       tolerance,
-                             const unsigned int max_iterations)
+                             const unsigned int max_iterations,
+                             const bool         reuse_amg,
+                             TimerOutput       &timer)
     : type(type)
     , tolerance(tolerance)
     , max_iterations(max_iterations)
+    , reuse_amg(reuse_amg)
+    , timer(timer)
   {}
 
 
@@ -78,6 +83,7 @@ namespace densify
                           std::max(tolerance * b.l2_norm(), 1e-300));
     if (type == "direct")
       {
+        TimerOutput::Scope t(timer, "Solve: direct");
         TrilinosWrappers::SolverDirect::AdditionalData data(false,
                                                             "Amesos_Klu");
         TrilinosWrappers::SolverDirect solver(control, data);
@@ -85,6 +91,72 @@ namespace densify
         return 1;
       }
 
+    const bool stale =
+      !reuse_amg || !amg || last_iterations > 2 * iterations_after_setup + 10;
+    if (stale)
+      setup_amg(matrix);
+    else
+      {
+        // a reused hierarchy gets a bounded number of iterations; if that
+        // is not enough, it is rebuilt and the solve repeated
+        SolverControl short_control(
+          std::min(max_iterations, 3 * iterations_after_setup + 20),
+          control.tolerance());
+        TimerOutput::Scope         t(timer, "Solve: CG");
+        TrilinosWrappers::SolverCG cg(short_control);
+        try
+          {
+            cg.solve(matrix, x, b, *amg);
+            last_iterations = short_control.last_step();
+            return last_iterations;
+          }
+        catch (const SolverControl::NoConvergence &)
+          {
+          }
+        catch (const ExceptionBase &)
+          {
+          }
+        x = 0;
+        setup_amg(matrix);
+      }
+
+    {
+      TimerOutput::Scope         t(timer, "Solve: CG");
+      TrilinosWrappers::SolverCG cg(control);
+      try
+        {
+          cg.solve(matrix, x, b, *amg);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          throw std::runtime_error(
+            "CG did not converge in " + std::to_string(e.last_step) +
+            " iterations (residual " + std::to_string(e.last_residual) +
+            "); raise Solver/Maximum linear iterations or try "
+            "Solver/Linear solver = direct");
+        }
+      catch (const ExceptionBase &e)
+        {
+          // AztecOO stops with "loss of precision" when the tolerance is
+          // below what round-off allows; its iterate is the best there is,
+          // and Newton's own check decides whether that suffices
+          std::ostringstream info;
+          e.print_info(info);
+          if (info.str().find("loss of precision") == std::string::npos)
+            throw std::runtime_error("CG failed: " + info.str());
+        }
+    }
+    last_iterations        = control.last_step();
+    iterations_after_setup = last_iterations;
+    return last_iterations;
+  }
+
+
+
+  void
+  LinearSolver::setup_amg(const TrilinosWrappers::SparseMatrix &matrix)
+  {
+    TimerOutput::Scope     t(timer, "Solve: AMG setup");
     Teuchos::ParameterList list;
     ML_Epetra::SetDefaults("SA", list);
     list.set("ML output", 0);
@@ -100,20 +172,6 @@ namespace densify
     list.set("null space: vectors", null_space.data());
     amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     amg->initialize(matrix.trilinos_matrix(), list);
-
-    TrilinosWrappers::SolverCG cg(control);
-    try
-      {
-        cg.solve(matrix, x, b, *amg);
-      }
-    catch (const SolverControl::NoConvergence &e)
-      {
-        throw std::runtime_error(
-          "CG did not converge in " + std::to_string(e.last_step) +
-          " iterations (residual " + std::to_string(e.last_residual) +
-          "); raise Solver/Maximum linear iterations or try "
-          "Solver/Linear solver = direct");
-      }
-    return control.last_step();
+    ++n_setups;
   }
 } // namespace densify

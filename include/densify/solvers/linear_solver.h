@@ -1,6 +1,8 @@
 // The linear solver of each Newton step: CG with ML AMG fed the rigid-body modes, or a direct solver.
 #pragma once
 
+#include <deal.II/base/timer.h>
+
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -28,10 +30,32 @@ namespace densify
   class LinearSolver
   {
   public:
-    /// @p type "cg-amg" or "direct"; tolerance relative to |b|.
+    /**
+     * @p type "cg-amg" or "direct"; tolerance relative to |b|. With
+     * @p reuse_amg, the AMG hierarchy is kept across solves until CG needs
+     * more than twice the iterations it needed right after the last setup
+     * (plus 10), or rebuild_preconditioner() is called. Times go into
+     * @p timer.
+     */
     LinearSolver(const std::string &type,
                  const double       tolerance,
-                 const unsigned int max_iterations);
+                 const unsigned int max_iterations,
+                 const bool         reuse_amg,
+                 TimerOutput       &timer);
+
+    /// Build the AMG hierarchy anew at the next solve.
+    void
+    rebuild_preconditioner()
+    {
+      amg.reset();
+    }
+
+    /// Number of AMG setups so far.
+    unsigned int
+    n_amg_setups() const
+    {
+      return n_setups;
+    }
 
     /**
      * Compute the rigid-body modes at the support points of the locally
@@ -50,9 +74,18 @@ namespace densify
           const TrilinosWrappers::MPI::Vector  &b);
 
   private:
+    /// Build the ML hierarchy of @p matrix with the rigid-body modes.
+    void
+    setup_amg(const TrilinosWrappers::SparseMatrix &matrix);
+
     const std::string   type;
     const double        tolerance;
     const unsigned int  max_iterations;
+    const bool          reuse_amg;
+    TimerOutput        &timer;
+    unsigned int        iterations_after_setup = 0;
+    unsigned int        last_iterations        = 0;
+    unsigned int        n_setups               = 0;
     /// Column-major: mode k of local row i at [k * n_local + i].
     std::vector<double> null_space;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
