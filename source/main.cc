@@ -44,7 +44,7 @@ main(int argc, char **argv)
 
   std::string              filename;
   std::vector<std::string> overrides;
-  bool validate_only = false, print_parameters = false;
+  bool                     validate_only = false, print_parameters = false;
   for (int i = 1; i < argc; ++i)
     {
       const std::string arg = argv[i];
@@ -61,8 +61,7 @@ main(int argc, char **argv)
       else if (arg == "--set")
         {
           if (i + 1 == argc)
-            return fail("--set needs an argument \"Subsection/Name=value\"",
-                        2);
+            return fail("--set needs an argument \"Subsection/Name=value\"", 2);
           overrides.emplace_back(argv[++i]);
         }
       else if (arg.rfind("--set=", 0) == 0)

@@ -77,6 +77,45 @@ namespace densify
     prm.enter_subsection("Material");
     {
       prm.add_parameter(
+        "Model",
+        material.model,
+        "Constitutive model of every particle: elastic (isotropic, "
+        "small-strain linear or finite-strain Hencky) or J2 plasticity "
+        "(finite-strain von Mises elastoplasticity, Simo 1992; "
+        "doc/theory.md). The material of each particle (Sn, Fe, Cu, custom) "
+        "gives E, nu and the yield stress.",
+        Patterns::Selection("elastic|J2 plasticity"));
+      prm.add_parameter(
+        "Finite strain",
+        material.finite_strain,
+        "true: finite-strain kinematics (large rotations, Hencky strain). "
+        "false: small-strain linear elasticity, for small deformations only "
+        "(allowed with Model = elastic only).");
+      prm.add_parameter(
+        "Hardening",
+        material.hardening,
+        "Isotropic hardening of every J2 material: none (perfectly plastic, "
+        "as the presets), linear (sigma_y = sigma0 + H eps_p) or power law "
+        "(sigma_y = sigma0 + K eps_p^n).",
+        Patterns::Selection("none|linear|power law"));
+      prm.add_parameter("Yield stress",
+                        material.yield_stress,
+                        "Initial yield stress sigma0 of the material 'custom', "
+                        "in MPa (> 0).",
+                        Patterns::Double(0.));
+      prm.add_parameter("Hardening modulus",
+                        material.hardening_modulus,
+                        "Linear hardening modulus H, in MPa (>= 0).",
+                        Patterns::Double(0.));
+      prm.add_parameter("Hardening coefficient",
+                        material.hardening_coefficient,
+                        "Power-law hardening coefficient K, in MPa (>= 0).",
+                        Patterns::Double(0.));
+      prm.add_parameter("Hardening exponent",
+                        material.hardening_exponent,
+                        "Power-law hardening exponent n (dimensionless, > 0).",
+                        Patterns::Double(1e-6));
+      prm.add_parameter(
         "Young's modulus",
         material.youngs_modulus,
         "Young's modulus of the material 'custom', in MPa (> 0). The presets "
@@ -169,6 +208,14 @@ namespace densify
                         "Number of equal load steps from t = 0 to the end "
                         "time (>= 1).",
                         Patterns::Integer(1));
+      prm.add_parameter(
+        "Maximum cut-backs",
+        time.max_cutbacks,
+        "A load increment that does not converge is rolled back and retried "
+        "with half the increment, at most this many times in a row within "
+        "one load step; the increment grows again after easy increments and "
+        "every load step still ends at its own time. 0: no cut-back.",
+        Patterns::Integer(0, 30));
     }
     prm.leave_subsection();
 
@@ -398,8 +445,8 @@ namespace densify
     for (unsigned int i = 1; i < table.size(); ++i)
       if (t <= table[i].first)
         {
-          const double s = (t - table[i - 1].first) /
-                           (table[i].first - table[i - 1].first);
+          const double s =
+            (t - table[i - 1].first) / (table[i].first - table[i - 1].first);
           return (1. - s) * table[i - 1].second + s * table[i].second;
         }
     return table.back().second;

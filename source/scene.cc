@@ -1,4 +1,5 @@
-// The scene of a run as read from the parameters: particles, tool positions, load history.
+// The scene of a run as read from the parameters: particles, tool positions,
+// load history.
 #include <deal.II/base/utilities.h>
 
 #include <densify/material/factory.h>
@@ -12,9 +13,9 @@ namespace densify
   Scene
   build_scene(const Parameters &prm)
   {
-    Scene scene;
-    std::vector<Particle> &particles = scene.particles;
-    const ParticleParameters &pp = prm.particles;
+    Scene                     scene;
+    std::vector<Particle>    &particles = scene.particles;
+    const ParticleParameters &pp        = prm.particles;
     if (!pp.particle_file.empty())
       particles = read_particle_csv(pp.particle_file, pp.materials);
     else
@@ -38,7 +39,7 @@ namespace densify
         for (unsigned int i = 0; i < centres.size(); ++i)
           {
             Particle p;
-            p.centre = centres[i];
+            p.centre             = centres[i];
             const std::string &d = d_list[d_list.size() == 1 ? 0 : i];
             try
               {
@@ -75,7 +76,7 @@ namespace densify
                                    init + "' is neither a number nor 'auto'");
         }
     scene.punch_table = parse_table(prm.tools.upper_displacement,
-                              "Tools/Upper punch/Displacement history");
+                                    "Tools/Upper punch/Displacement history");
 
     Container container;
     container.has_die    = prm.tools.die_enabled;

@@ -1,4 +1,5 @@
-// The quasi-static compaction driver: mesh, DoFs, Newton per load step, contact, output.
+// The quasi-static compaction driver: mesh, DoFs, Newton per load step,
+// contact, output.
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 
@@ -188,18 +189,15 @@ namespace densify
   void
   Simulator::setup_system()
   {
-    fe = std::make_unique<FESystem<3>>(FE_SimplexP<3>(prm.mesh.degree), 3);
+    fe      = std::make_unique<FESystem<3>>(FE_SimplexP<3>(prm.mesh.degree), 3);
     mapping = std::make_unique<MappingFE<3>>(FE_SimplexP<3>(1));
     dof_handler.distribute_dofs(*fe);
     locally_owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
     TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    sp,
-                                    AffineConstraints<double>(),
-                                    false,
-                                    this_rank);
+    DoFTools::make_sparsity_pattern(
+      dof_handler, sp, AffineConstraints<double>(), false, this_rank);
     sp.compress();
     tangent.reinit(sp);
     stabilisation.reinit(sp);
@@ -224,12 +222,26 @@ namespace densify
                         h_min);
     tool_contact.setup(dof_handler, tools, penalty, prm.mesh.degree + 1);
 
-    linear_solver = std::make_unique<LinearSolver>(
-      prm.solver.linear_solver,
-      prm.solver.linear_tolerance,
-      prm.solver.max_linear_iterations,
-      prm.solver.reuse_amg,
-      timer);
+    // quadrature-point history only where a material needs it
+    has_history = false;
+    for (const auto &m : particle_material)
+      has_history = has_history || m->needs_history();
+    if (has_history)
+      {
+        const unsigned int n_q = QGaussSimplex<3>(prm.mesh.degree + 1).size();
+        committed_history.assign(triangulation.n_active_cells() * n_q,
+                                 MaterialState());
+        trial_history = committed_history;
+      }
+    current_upper  = upper_initial;
+    next_increment = prm.time.end_time / prm.time.n_steps;
+
+    linear_solver =
+      std::make_unique<LinearSolver>(prm.solver.linear_solver,
+                                     prm.solver.linear_tolerance,
+                                     prm.solver.max_linear_iterations,
+                                     prm.solver.reuse_amg,
+                                     timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
     setup_stabilisation();
   }
@@ -240,8 +252,8 @@ namespace densify
   Simulator::setup_stabilisation()
   {
     // beta E / D^2 times the mass matrix of each particle (tangent only)
-    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
-    FEValues<3>            fe_values(*mapping,
+    const QGaussSimplex<3>               quadrature(prm.mesh.degree + 1);
+    FEValues<3>                          fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_values | update_JxW_values);
@@ -252,8 +264,8 @@ namespace densify
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const unsigned int p = cell->material_id();
-          const double alpha   = prm.solver.stabilisation *
+          const unsigned int p     = cell->material_id();
+          const double       alpha = prm.solver.stabilisation *
                                particle_material[p]->youngs_modulus() /
                                (particles[p].diameter * particles[p].diameter);
           fe_values.reinit(cell);
@@ -291,15 +303,16 @@ namespace densify
   Simulator::AssemblyResult
   Simulator::assemble(const bool with_matrix, const double tangent_margin)
   {
-    TimerOutput::Scope t(timer, with_matrix ? "Assembly: tangent+residual" :
-                                              "Assembly: residual");
+    TimerOutput::Scope t(timer,
+                         with_matrix ? "Assembly: tangent+residual" :
+                                       "Assembly: residual");
     update_ghosts();
     residual = 0;
     if (with_matrix)
       tangent = 0;
 
-    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
-    FEValues<3>            fe_values(*mapping,
+    const QGaussSimplex<3>               quadrature(prm.mesh.degree + 1);
+    FEValues<3>                          fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_gradients | update_JxW_values);
@@ -318,8 +331,9 @@ namespace densify
     Tensor<2, 3>                     P;
     Tensor<4, 3>                     A;
 
+    std::string material_failure;
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() && material_failure.empty())
         {
           fe_values.reinit(cell);
           fe_values[u].get_function_gradients(solution_ghosted, grad_u);
@@ -329,7 +343,22 @@ namespace densify
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-              material.evaluate(F, nullptr, nullptr, P, A);
+              const unsigned int k = cell->active_cell_index() * n_q + q;
+              try
+                {
+                  material.evaluate(F,
+                                    has_history ? &committed_history[k] :
+                                                  nullptr,
+                                    has_history ? &trial_history[k] : nullptr,
+                                    P,
+                                    A);
+                }
+              catch (const std::exception &e)
+                {
+                  // e.g. an inverted element; reported on every rank below
+                  material_failure = e.what();
+                  break;
+                }
               const double JxW = fe_values.JxW(q);
               // each shape function of the FESystem has one nonzero
               // component c_i: grad phi_i = e_{c_i} (x) g_i
@@ -356,6 +385,15 @@ namespace densify
             tangent.add(dofs, cell_matrix);
         }
     residual.compress(VectorOperation::add);
+    if (Utilities::MPI::max(material_failure.empty() ? 0 : 1, comm) > 0)
+      {
+        if (with_matrix)
+          tangent.compress(VectorOperation::add);
+        throw std::runtime_error("material: " +
+                                 (material_failure.empty() ?
+                                    std::string("failed on another rank") :
+                                    material_failure));
+      }
 
     AssemblyResult result;
     const double   internal_norm = residual.l2_norm();
@@ -401,13 +439,11 @@ namespace densify
     AssemblyResult current           = assemble(true, margin);
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
-        const double target =
-          std::max(tol * current.reference_norm, floor);
+        const double target = std::max(tol * current.reference_norm, floor);
         if (prm.output.verbose)
           pcout << "    newton " << it << ": |R| = " << std::scientific
-                << std::setprecision(3) << current.residual_norm
-                << " (target " << target << ")" << std::defaultfloat
-                << std::endl;
+                << std::setprecision(3) << current.residual_norm << " (target "
+                << target << ")" << std::defaultfloat << std::endl;
         if (current.residual_norm <= target)
           return {it, linear_iterations};
         if (it == prm.solver.max_newton_iterations)
@@ -451,10 +487,9 @@ namespace densify
       }
     std::ostringstream msg;
     msg << "step " << step << ": Newton did not converge in "
-        << prm.solver.max_newton_iterations
-        << " iterations (residual " << std::scientific << std::setprecision(2)
-        << current.residual_norm << " N, target "
-        << std::max(tol * current.reference_norm, floor)
+        << prm.solver.max_newton_iterations << " iterations (residual "
+        << std::scientific << std::setprecision(2) << current.residual_norm
+        << " N, target " << std::max(tol * current.reference_norm, floor)
         << " N); try more steps (Time stepping/Number of steps) or raise "
            "Solver/Maximum Newton iterations";
     throw std::runtime_error(msg.str());
@@ -465,8 +500,8 @@ namespace densify
   std::vector<double>
   Simulator::particle_volumes() const
   {
-    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
-    FEValues<3>            fe_values(*mapping,
+    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
+    FEValues<3>                      fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_gradients | update_JxW_values);
@@ -496,8 +531,8 @@ namespace densify
   std::vector<Tensor<1, 3>>
   Simulator::particle_mean_displacements() const
   {
-    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
-    FEValues<3>            fe_values(*mapping,
+    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
+    FEValues<3>                      fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_values | update_JxW_values);
@@ -531,6 +566,118 @@ namespace densify
 
 
 
+  ToolContactResult
+  Simulator::solve_increment(const double       time,
+                             const unsigned int step,
+                             StepStatistics    &s)
+  {
+    const double upper = upper_punch_position(time);
+    tool_contact.set_tool_position(ToolKind::upper_punch, upper);
+    const double punch_increment = std::abs(upper - current_upper);
+    // predictor: extrapolate the last increment in proportion to the punch
+    // travel
+    const TrilinosWrappers::MPI::Vector start = solution;
+    if (last_punch_increment > 0)
+      solution.add(punch_increment / last_punch_increment, last_increment);
+
+    ToolContactResult contact;
+    for (unsigned int aug = 0;; ++aug)
+      {
+        // predictor margin: contacts within this increment's punch travel
+        const auto [newton, linear] =
+          solve_newton(step, aug == 0 ? punch_increment : 0.);
+        s.newton_iterations += newton;
+        s.linear_iterations += linear;
+        {
+          TimerOutput::Scope t(timer, "Contact: multipliers");
+          contact = tool_contact.evaluate(*mapping, solution_ghosted);
+          if (contact.max_penetration <= prm.contact.gap_tolerance ||
+              aug == prm.contact.max_augmentations)
+            break;
+          tool_contact.update_multipliers(*mapping, solution_ghosted);
+        }
+        ++s.augmentations;
+      }
+    if (contact.max_penetration > prm.contact.gap_tolerance)
+      pcout << "  warning: penetration " << contact.max_penetration
+            << " mm above Contact/Gap tolerance after "
+            << prm.contact.max_augmentations
+            << " augmentations; raise Contact/Maximum augmentations or "
+               "Contact/Penalty factor"
+            << std::endl;
+
+    // the converged increment, for the next predictor
+    last_increment = solution;
+    last_increment -= start;
+    last_punch_increment = punch_increment;
+    current_upper        = upper;
+    return contact;
+  }
+
+
+
+  ToolContactResult
+  Simulator::advance_to(const double       time,
+                        const unsigned int step,
+                        StepStatistics    &s)
+  {
+    const double      step_length = prm.time.end_time / prm.time.n_steps;
+    double            dt = std::min(next_increment, time - current_time);
+    unsigned int      cutbacks_in_a_row = 0;
+    ToolContactResult contact;
+    while (current_time < time - 1e-12 * step_length)
+      {
+        dt = std::min(dt, time - current_time);
+        // what a failed increment must restore
+        const TrilinosWrappers::MPI::Vector saved_solution  = solution;
+        const TrilinosWrappers::MPI::Vector saved_increment = last_increment;
+        const std::vector<double> saved_lambda  = tool_contact.multipliers();
+        const double              saved_punch   = last_punch_increment;
+        const double              saved_upper   = current_upper;
+        const unsigned int        newton_before = s.newton_iterations;
+        try
+          {
+            contact = solve_increment(current_time + dt, step, s);
+          }
+        catch (const std::runtime_error &e)
+          {
+            solution       = saved_solution;
+            last_increment = saved_increment;
+            tool_contact.set_multipliers(saved_lambda);
+            last_punch_increment = saved_punch;
+            current_upper        = saved_upper;
+            update_ghosts();
+            if (cutbacks_in_a_row == prm.time.max_cutbacks)
+              throw std::runtime_error(
+                std::string(e.what()) +
+                (prm.time.max_cutbacks > 0 ?
+                   " (also after " + std::to_string(cutbacks_in_a_row) +
+                     " cut-backs; raise Time stepping/Maximum cut-backs)" :
+                   ""));
+            dt /= 2;
+            ++cutbacks_in_a_row;
+            ++s.cutbacks;
+            pcout << "  step " << step << ": increment cut back to "
+                  << std::setprecision(3) << dt / step_length << " of a step ("
+                  << e.what() << ")" << std::endl;
+            continue;
+          }
+        // accepted: commit the history
+        if (has_history)
+          committed_history = trial_history;
+        current_time += dt;
+        ++s.increments;
+        cutbacks_in_a_row = 0;
+        // easy increments let the increment grow again, up to a full step
+        if (s.newton_iterations - newton_before <= 10)
+          dt = std::min(2 * dt, step_length);
+      }
+    next_increment = dt;
+    return contact;
+  }
+
+
+
   void
   Simulator::write_graphics(const unsigned int step, const double time)
   {
@@ -544,24 +691,28 @@ namespace densify
     const IndexSet post_owned = post_dof_handler.locally_owned_dofs();
     IndexSet       post_relevant;
     DoFTools::extract_locally_relevant_dofs(post_dof_handler, post_relevant);
-    TrilinosWrappers::MPI::Vector vm_w(post_owned, comm), vm_m(post_owned, comm),
-      p_w(post_owned, comm), p_m(post_owned, comm), gap(post_owned, comm);
+    TrilinosWrappers::MPI::Vector pr_w(post_owned, comm),
+      ep_w(post_owned, comm);
+    TrilinosWrappers::MPI::Vector vm_w(post_owned, comm),
+      vm_m(post_owned, comm), p_w(post_owned, comm), p_m(post_owned, comm),
+      gap(post_owned, comm);
 
-    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
-    FEValues<3>                      fe_values(*mapping,
+    const QGaussSimplex<3>               quadrature(prm.mesh.degree + 1);
+    FEValues<3>                          fe_values(*mapping,
                           *fe,
                           quadrature,
                           update_gradients | update_JxW_values);
-    FEValues<3>                      post_values(*mapping,
-                             post_fe,
-                             quadrature,
-                             update_values | update_JxW_values);
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
+    FEValues<3>                          post_values(*mapping,
+                            post_fe,
+                            quadrature,
+                            update_values | update_JxW_values);
+    const FEValuesExtractors::Vector     u(0);
+    std::vector<Tensor<2, 3>>            grad_u(quadrature.size());
     std::vector<types::global_dof_index> post_dofs(post_fe.n_dofs_per_cell());
-    Vector<double> cell_w(post_dofs.size()), cell_m(post_dofs.size());
-    Tensor<2, 3>   P;
-    Tensor<4, 3>   A;
+    Vector<double> cell_w(post_dofs.size()), cell_m(post_dofs.size()),
+      cell_p(post_dofs.size()), cell_e(post_dofs.size());
+    Tensor<2, 3> P;
+    Tensor<4, 3> A;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -572,27 +723,44 @@ namespace densify
           fe_values[u].get_function_gradients(solution_ghosted, grad_u);
           cell_w = 0;
           cell_m = 0;
+          cell_p = 0;
+          cell_e = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+              const unsigned int k =
+                cell->active_cell_index() * quadrature.size() + q;
+              MaterialState scratch;
               particle_material[cell->material_id()]->evaluate(
-                F, nullptr, nullptr, P, A);
-              const double vm = von_mises(P, F);
+                F,
+                has_history ? &committed_history[k] : nullptr,
+                has_history ? &scratch : nullptr,
+                P,
+                A);
+              const double       vm    = von_mises(P, F);
+              const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
+              const double       eps_p =
+                has_history ? committed_history[k].eps_p : 0.;
               for (unsigned int i = 0; i < post_dofs.size(); ++i)
                 {
                   const double v =
                     post_values.shape_value(i, q) * post_values.JxW(q);
                   cell_w(i) += v * vm;
                   cell_m(i) += v;
+                  cell_p(i) += v * (-trace(sigma) / 3.);
+                  cell_e(i) += v * eps_p;
                 }
             }
           post_cell->get_dof_indices(post_dofs);
           vm_w.add(post_dofs, cell_w);
           vm_m.add(post_dofs, cell_m);
+          pr_w.add(post_dofs, cell_p);
+          ep_w.add(post_dofs, cell_e);
           // signed gap to the nearest tool at each vertex
           for (const unsigned int v : cell->vertex_indices())
             {
-              const types::global_dof_index i = post_cell->vertex_dof_index(v, 0);
+              const types::global_dof_index i =
+                post_cell->vertex_dof_index(v, 0);
               if (!post_owned.is_element(i))
                 continue;
               Point<3> x = cell->vertex(v);
@@ -610,21 +778,30 @@ namespace densify
         }
     tool_contact.project_pressure(
       *mapping, solution_ghosted, post_dof_handler, p_w, p_m);
-    for (auto *v : {&vm_w, &vm_m, &p_w, &p_m})
+    for (auto *v : {&vm_w, &vm_m, &p_w, &p_m, &pr_w, &ep_w})
       v->compress(VectorOperation::add);
     gap.compress(VectorOperation::insert);
     for (const auto i : post_owned)
       {
+        pr_w(i) = (vm_m(i) > 0 ? pr_w(i) / vm_m(i) : 0.);
+        ep_w(i) = (vm_m(i) > 0 ? ep_w(i) / vm_m(i) : 0.);
         vm_w(i) = (vm_m(i) > 0 ? vm_w(i) / vm_m(i) : 0.);
         p_w(i)  = (p_m(i) > 0 ? p_w(i) / p_m(i) : 0.);
       }
     vm_w.compress(VectorOperation::insert);
     p_w.compress(VectorOperation::insert);
+    pr_w.compress(VectorOperation::insert);
+    ep_w.compress(VectorOperation::insert);
     TrilinosWrappers::MPI::Vector vm_g(post_owned, post_relevant, comm),
-      p_g(post_owned, post_relevant, comm), gap_g(post_owned, post_relevant, comm);
+      p_g(post_owned, post_relevant, comm),
+      gap_g(post_owned, post_relevant, comm),
+      pr_g(post_owned, post_relevant, comm),
+      ep_g(post_owned, post_relevant, comm);
     vm_g  = vm_w;
     p_g   = p_w;
     gap_g = gap;
+    pr_g  = pr_w;
+    ep_g  = ep_w;
 
     Vector<float> particle_id(triangulation.n_active_cells()),
       rank(triangulation.n_active_cells());
@@ -645,6 +822,9 @@ namespace densify
     data_out.add_data_vector(post_dof_handler, vm_g, "von_mises");
     data_out.add_data_vector(post_dof_handler, p_g, "contact_pressure");
     data_out.add_data_vector(post_dof_handler, gap_g, "gap");
+    data_out.add_data_vector(post_dof_handler, pr_g, "pressure");
+    if (has_history)
+      data_out.add_data_vector(post_dof_handler, ep_g, "plastic_strain");
     data_out.add_data_vector(particle_id, "particle_id");
     data_out.add_data_vector(rank, "mpi_rank");
     data_out.build_patches(*mapping, prm.mesh.degree);
@@ -687,8 +867,8 @@ namespace densify
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     pcout << "Densify: " << particles.size() << " particle(s), "
           << triangulation.n_active_cells() << " tetrahedra, " << n_dofs()
-          << " DoFs (P" << prm.mesh.degree << "), " << n_ranks
-          << " MPI rank(s)" << std::endl;
+          << " DoFs (P" << prm.mesh.degree << "), " << n_ranks << " MPI rank(s)"
+          << std::endl;
     pcout << "Active effects: " << particle_material[0]->name();
     for (const RigidTool &tool : tool_contact.tools())
       pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
@@ -696,8 +876,7 @@ namespace densify
 
     const double die_area =
       numbers::PI * std::pow(prm.tools.die_diameter / 2, 2);
-    const bool has_density = prm.tools.die_enabled &&
-                             prm.tools.lower_enabled &&
+    const bool has_density = prm.tools.die_enabled && prm.tools.lower_enabled &&
                              prm.tools.upper_enabled;
     auto density = [&](const double volume, const double upper) {
       return has_density ?
@@ -726,50 +905,17 @@ namespace densify
         const double   time  = prm.time.end_time * step / n_steps;
         const double   upper = upper_punch_position(time);
         StepStatistics s;
-        s.step               = step;
-        s.time               = time;
-        s.punch_displacement = upper_initial - upper;
-        tool_contact.set_tool_position(ToolKind::upper_punch, upper);
-        const double previous_displacement =
-          step > 1 ? step_statistics.back().punch_displacement : 0.;
-        const double punch_increment =
-          std::abs(s.punch_displacement - previous_displacement);
-        // predictor: extrapolate the last step's increment in proportion
-        // to the punch travel
-        const TrilinosWrappers::MPI::Vector step_start = solution;
-        if (step > 1 && last_punch_increment > 0)
-          solution.add(punch_increment / last_punch_increment, last_increment);
-        last_stabilisation_force = 0;
+        s.step                          = step;
+        s.time                          = time;
+        s.punch_displacement            = upper_initial - upper;
+        last_stabilisation_force        = 0;
+        const ToolContactResult contact = advance_to(time, step, s);
 
-        ToolContactResult contact;
-        for (unsigned int aug = 0;; ++aug)
-          {
-            // predictor margin: contacts within this step's punch travel
-            const auto [newton, linear] =
-              solve_newton(step, aug == 0 ? punch_increment : 0.);
-            s.newton_iterations += newton;
-            s.linear_iterations += linear;
-            {
-              TimerOutput::Scope t(timer, "Contact: multipliers");
-              contact = tool_contact.evaluate(*mapping, solution_ghosted);
-              if (contact.max_penetration <= prm.contact.gap_tolerance ||
-                  aug == prm.contact.max_augmentations)
-                break;
-              tool_contact.update_multipliers(*mapping, solution_ghosted);
-            }
-            ++s.augmentations;
-          }
-        if (contact.max_penetration > prm.contact.gap_tolerance)
-          pcout << "  warning: penetration " << contact.max_penetration
-                << " mm above Contact/Gap tolerance after "
-                << prm.contact.max_augmentations
-                << " augmentations; raise Contact/Maximum augmentations or "
-                   "Contact/Penalty factor"
-                << std::endl;
-
-        const auto upper_kind = static_cast<unsigned int>(ToolKind::upper_punch);
-        const auto lower_kind = static_cast<unsigned int>(ToolKind::lower_punch);
-        const auto die_kind   = static_cast<unsigned int>(ToolKind::die_wall);
+        const auto upper_kind =
+          static_cast<unsigned int>(ToolKind::upper_punch);
+        const auto lower_kind =
+          static_cast<unsigned int>(ToolKind::lower_punch);
+        const auto die_kind     = static_cast<unsigned int>(ToolKind::die_wall);
         s.upper_punch_force     = contact.normal_force[upper_kind];
         s.lower_punch_force     = contact.normal_force[lower_kind];
         s.die_wall_force        = contact.axial_force[die_kind];
@@ -784,10 +930,6 @@ namespace densify
             (step % prm.output.interval == 0 || step == n_steps))
           write_graphics(step, time);
 
-        // the converged increment of this step, for the next predictor
-        last_increment = solution;
-        last_increment -= step_start;
-        last_punch_increment = punch_increment;
         s.step_seconds = step_timer.wall_time();
         s.wall_seconds = wall.wall_time();
         step_statistics.push_back(s);
@@ -795,9 +937,9 @@ namespace densify
           statistics_writer->write(s);
 
         const double left = s.wall_seconds / step * (n_steps - step);
-        pcout << "step " << step << "/" << n_steps << "  t=" << std::setprecision(4)
-              << time << " s  punch " << s.punch_displacement
-              << " mm  F_upper " << std::setprecision(5)
+        pcout << "step " << step << "/" << n_steps
+              << "  t=" << std::setprecision(4) << time << " s  punch "
+              << s.punch_displacement << " mm  F_upper " << std::setprecision(5)
               << s.upper_punch_force << " N  F_lower " << s.lower_punch_force
               << " N  F_die " << s.die_wall_radial_force << " N  F_stab "
               << std::setprecision(2) << s.stabilisation_force << " N";
@@ -805,8 +947,11 @@ namespace densify
           pcout << "  density " << std::setprecision(4)
                 << 100 * s.relative_density << " %";
         pcout << "  newton " << s.newton_iterations << " (cg "
-              << s.linear_iterations << ", aug " << s.augmentations << ")  "
-              << format_seconds(s.wall_seconds) << ", ~"
+              << s.linear_iterations << ", aug " << s.augmentations;
+        if (s.cutbacks > 0)
+          pcout << ", " << s.cutbacks << " cut-back(s), " << s.increments
+                << " increments";
+        pcout << ")  " << format_seconds(s.wall_seconds) << ", ~"
               << format_seconds(left) << " left" << std::endl;
       }
     pcout << "Finished " << n_steps << " steps in "

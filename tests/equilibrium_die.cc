@@ -5,11 +5,11 @@
 
 #include <densify/simulator.h>
 
+#include "test_utilities.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-
-#include "test_utilities.h"
 
 int
 main(int argc, char **argv)

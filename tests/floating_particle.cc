@@ -5,11 +5,11 @@
 
 #include <densify/simulator.h>
 
+#include "test_utilities.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-
-#include "test_utilities.h"
 
 int
 main(int argc, char **argv)
@@ -32,25 +32,26 @@ main(int argc, char **argv)
                        "Particles/Diameters=2.5, 1.5",
                        "Tools/Upper punch/Displacement history=0:0, 1:0.1",
                        "Time stepping/Number of steps=2"});
-  Simulator simulator(parameters, MPI_COMM_WORLD, false);
+  Simulator                 simulator(parameters, MPI_COMM_WORLD, false);
   const std::vector<double> v0 = [&] {
     simulator.setup();
     return simulator.particle_volumes();
   }();
   simulator.run();
 
-  const std::vector<Tensor<1, 3>> drift = simulator.particle_mean_displacements();
-  const std::vector<double>       v1    = simulator.particle_volumes();
-  const StepStatistics           &last  = simulator.statistics().back();
-  const bool still = drift[1].norm() < 1e-12;
-  const bool same_volume = std::abs(v1[1] - v0[1]) < 1e-12 * v0[1];
+  const std::vector<Tensor<1, 3>> drift =
+    simulator.particle_mean_displacements();
+  const std::vector<double> v1    = simulator.particle_volumes();
+  const StepStatistics     &last  = simulator.statistics().back();
+  const bool                still = drift[1].norm() < 1e-12;
+  const bool same_volume          = std::abs(v1[1] - v0[1]) < 1e-12 * v0[1];
   const bool balanced =
     std::abs(last.upper_punch_force - last.lower_punch_force) <
     1e-6 * last.upper_punch_force;
   if (root)
     std::cout << "pressed particle carries " << std::setprecision(4)
-              << last.upper_punch_force << " N, balanced: "
-              << (balanced ? "yes" : "NO") << std::endl
+              << last.upper_punch_force
+              << " N, balanced: " << (balanced ? "yes" : "NO") << std::endl
               << "floating particle stays put (|mean u| < 1e-12 mm): "
               << (still ? "yes" : "NO") << std::endl
               << "floating particle keeps its volume: "

@@ -4,11 +4,11 @@
 
 #include <densify/simulator.h>
 
+#include "test_utilities.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-
-#include "test_utilities.h"
 
 int
 main(int argc, char **argv)
@@ -22,7 +22,7 @@ main(int argc, char **argv)
                       prm,
                       "hertz.prm",
                       {"Output/Directory=output", "Output/Interval=0"});
-  Simulator          simulator(parameters, MPI_COMM_WORLD, false);
+  Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 
   const double E = 43120., nu = 0.3, R = 1.25;
@@ -34,7 +34,7 @@ main(int argc, char **argv)
               << "delta/R  F_fem  F_hertz  error_in_percent" << std::endl;
   for (const StepStatistics &s : simulator.statistics())
     {
-      const double delta   = s.punch_displacement;
+      const double delta = s.punch_displacement;
       const double F_hertz =
         4. / 3. * E_star * std::sqrt(R) * std::pow(delta / 2, 1.5);
       const double error = (s.upper_punch_force - F_hertz) / F_hertz;
@@ -46,8 +46,8 @@ main(int argc, char **argv)
       if (root)
         std::cout << std::setprecision(6) << delta / R << ' '
                   << s.upper_punch_force << ' ' << F_hertz << ' '
-                  << std::setprecision(3) << 100 * error
-                  << "  balance " << (imbalance < 1e-6 ? "ok" : "VIOLATED")
+                  << std::setprecision(3) << 100 * error << "  balance "
+                  << (imbalance < 1e-6 ? "ok" : "VIOLATED")
                   << "  stabilisation "
                   << (s.stabilisation_force < 1e-6 * s.upper_punch_force ?
                         "negligible" :

@@ -1,4 +1,5 @@
-// Helpers shared by the test programs: reading a scene from prm/ with overrides.
+// Helpers shared by the test programs: reading a scene from prm/ with
+// overrides.
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>

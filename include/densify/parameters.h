@@ -41,9 +41,23 @@ namespace densify
     unsigned int degree = 1;
   };
 
-  /// Subsection "Material": elastic constants of the material "custom".
+  /// Subsection "Material": the constitutive model and the material "custom".
   struct MaterialParameters
   {
+    /// "elastic" or "J2 plasticity".
+    std::string model = "elastic";
+    /// Finite-strain kinematics (false: small strain, elastic only).
+    bool finite_strain = true;
+    /// "none", "linear" or "power law".
+    std::string hardening = "none";
+    /// Initial yield stress of "custom" (MPa).
+    double yield_stress = 31.;
+    /// Linear hardening modulus H (MPa).
+    double hardening_modulus = 0.;
+    /// Power-law coefficient K (MPa).
+    double hardening_coefficient = 0.;
+    /// Power-law exponent n (-).
+    double hardening_exponent = 1.;
     /// Young's modulus of "custom" (MPa).
     double youngs_modulus = 43120.;
     /// Poisson's ratio of "custom" (-).
@@ -59,7 +73,8 @@ namespace densify
     double lower_position = 0.;
     /// Upper punch present?
     bool upper_enabled = true;
-    /// Upper punch face height at t = 0 (mm), or "auto": top of the highest particle.
+    /// Upper punch face height at t = 0 (mm), or "auto": top of the highest
+    /// particle.
     std::string upper_initial_position = "auto";
     /// Downward displacement history "t:d, t:d, ..." (s:mm), piecewise linear.
     std::string upper_displacement = "0:0, 1:0.1";
@@ -87,6 +102,8 @@ namespace densify
     double end_time = 1.;
     /// Number of load steps.
     unsigned int n_steps = 10;
+    /// Maximum halvings of the increment within one load step.
+    unsigned int max_cutbacks = 8;
   };
 
   /// Subsection "Solver": Newton, linear solver and stabilisation.
@@ -122,14 +139,22 @@ namespace densify
   /// Every parameter of a run.
   struct Parameters
   {
+    /// Subsection "Particles".
     ParticleParameters particles;
-    MeshParameters     mesh;
+    /// Subsection "Mesh".
+    MeshParameters mesh;
+    /// Subsection "Material".
     MaterialParameters material;
-    ToolParameters     tools;
-    ContactParameters  contact;
-    TimeParameters     time;
-    SolverParameters   solver;
-    OutputParameters   output;
+    /// Subsection "Tools".
+    ToolParameters tools;
+    /// Subsection "Contact".
+    ContactParameters contact;
+    /// Subsection "Time stepping".
+    TimeParameters time;
+    /// Subsection "Solver".
+    SolverParameters solver;
+    /// Subsection "Output".
+    OutputParameters output;
 
     /// Declare every entry (bound to the members above) in @p prm.
     void

@@ -1,4 +1,5 @@
-// The scene of a run as read from the parameters: particles, tool positions, load history.
+// The scene of a run as read from the parameters: particles, tool positions,
+// load history.
 #pragma once
 
 #include <densify/geometry/particles.h>

@@ -1,4 +1,5 @@
-// The quasi-static compaction driver: mesh, DoFs, Newton per load step, contact, output.
+// The quasi-static compaction driver: mesh, DoFs, Newton per load step,
+// contact, output.
 #pragma once
 
 #include <deal.II/base/conditional_ostream.h>
@@ -8,12 +9,12 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <deal.II/distributed/shared_tria.h>
-
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe.h>
+
+#include <deal.II/distributed/shared_tria.h>
 
 #include <densify/contact/tool_contact.h>
 #include <densify/geometry/particles.h>
@@ -123,6 +124,26 @@ namespace densify
     std::pair<unsigned int, unsigned int>
     solve_newton(const unsigned int step, const double margin);
 
+    /**
+     * Solve one increment to @p time: predictor, then Newton inside the
+     * multiplier updates. Throws std::runtime_error on failure (the caller
+     * restores the state).
+     */
+    ToolContactResult
+    solve_increment(const double       time,
+                    const unsigned int step,
+                    StepStatistics    &s);
+
+    /**
+     * Advance from the current time to @p time (the end of load step
+     * @p step) in one or more increments: a failed increment is rolled back
+     * and retried with half the size (at most Time stepping/Maximum
+     * cut-backs times in a row), and increments grow again after easy ones.
+     * Commits the quadrature-point history of each accepted increment.
+     */
+    ToolContactResult
+    advance_to(const double time, const unsigned int step, StepStatistics &s);
+
     /// Position of the upper punch face at time @p t (mm).
     double
     upper_punch_position(const double t) const;
@@ -135,13 +156,13 @@ namespace densify
     void
     update_ghosts();
 
-    const Parameters &prm;
-    MPI_Comm          comm;
-    const unsigned int this_rank;
-    std::ofstream      log_file;
+    const Parameters             &prm;
+    MPI_Comm                      comm;
+    const unsigned int            this_rank;
+    std::ofstream                 log_file;
     std::unique_ptr<std::ostream> tee;
-    ConditionalOStream pcout;
-    TimerOutput        timer;
+    ConditionalOStream            pcout;
+    TimerOutput                   timer;
 
     std::vector<Particle>                        particles;
     std::vector<std::shared_ptr<const Material>> particle_material;
@@ -159,6 +180,15 @@ namespace densify
     TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual,
       increment;
 
+    /// Quadrature-point history (index: active cell index * n_q + q),
+    /// allocated only if some material needs it.
+    bool                       has_history = false;
+    std::vector<MaterialState> committed_history, trial_history;
+    /// Time and upper punch position of the last accepted increment.
+    double current_time = 0., current_upper = 0.;
+    /// Size of the next increment (s).
+    double next_increment = 0.;
+
     /// Converged displacement increment of the last step and the punch
     /// travel that caused it (for the extrapolating predictor).
     TrilinosWrappers::MPI::Vector last_increment;
@@ -168,8 +198,8 @@ namespace densify
     std::unique_ptr<LinearSolver> linear_solver;
     double                        last_stabilisation_force = 0.;
 
-    std::vector<StepStatistics>                   step_statistics;
-    std::unique_ptr<StatisticsWriter>             statistics_writer;
+    std::vector<StepStatistics>                 step_statistics;
+    std::unique_ptr<StatisticsWriter>           statistics_writer;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace densify

@@ -1,4 +1,5 @@
-// Augmented-Lagrangian normal contact between particle surfaces and the rigid tools.
+// Augmented-Lagrangian normal contact between particle surfaces and the rigid
+// tools.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -28,8 +29,7 @@ namespace densify
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary())
               faces.emplace_back(cell, f);
-    lambda.assign(faces.size() * face_quadrature.size() * tool_list.size(),
-                  0.);
+    lambda.assign(faces.size() * face_quadrature.size() * tool_list.size(), 0.);
   }
 
 
@@ -59,22 +59,22 @@ namespace densify
     if (faces.empty() && tool_list.empty())
       return result;
 
-    const FiniteElement<3> &fe = dof_handler->get_fe();
-    const unsigned int      n_q = face_quadrature.size();
-    const unsigned int      n_dofs = fe.n_dofs_per_cell();
-    const unsigned int      n_tools = tool_list.size();
-    FEFaceValues<3>         fe_face(mapping,
+    const FiniteElement<3>          &fe      = dof_handler->get_fe();
+    const unsigned int               n_q     = face_quadrature.size();
+    const unsigned int               n_dofs  = fe.n_dofs_per_cell();
+    const unsigned int               n_tools = tool_list.size();
+    FEFaceValues<3>                  fe_face(mapping,
                             fe,
                             face_quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
     std::unique_ptr<FEFaceValues<3>> post_face;
     if (post_dof_handler != nullptr)
-      post_face = std::make_unique<FEFaceValues<3>>(
-        mapping,
-        post_dof_handler->get_fe(),
-        face_quadrature,
-        update_values | update_JxW_values);
+      post_face =
+        std::make_unique<FEFaceValues<3>>(mapping,
+                                          post_dof_handler->get_fe(),
+                                          face_quadrature,
+                                          update_values | update_JxW_values);
 
     const FEValuesExtractors::Vector     u(0);
     std::vector<Tensor<1, 3>>            u_values(n_q);
@@ -91,7 +91,7 @@ namespace densify
         const auto &[cell, f] = faces[k];
         fe_face.reinit(cell, f);
         fe_face[u].get_function_values(solution, u_values);
-        const double eps = penalty[cell->material_id()];
+        const double eps     = penalty[cell->material_id()];
         bool         touched = false;
         cell_matrix          = 0;
         cell_residual        = 0;
@@ -111,8 +111,8 @@ namespace densify
 
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const Point<3> x   = fe_face.quadrature_point(q) + u_values[q];
-            const double   JxW = fe_face.JxW(q);
+            const Point<3> x     = fe_face.quadrature_point(q) + u_values[q];
+            const double   JxW   = fe_face.JxW(q);
             double         p_sum = 0;
             for (unsigned int t = 0; t < n_tools; ++t)
               {
@@ -125,8 +125,8 @@ namespace densify
                 if (new_lambda != nullptr)
                   (*new_lambda)[idx] = p;
                 result.max_penetration = std::max(result.max_penetration, -g);
-                const bool predicted = (p <= 0. && matrix != nullptr &&
-                                        g < tangent_margin);
+                const bool predicted =
+                  (p <= 0. && matrix != nullptr && g < tangent_margin);
                 if (p <= 0. && !predicted)
                   continue;
                 if (predicted)
@@ -164,11 +164,11 @@ namespace densify
                   for (unsigned int i = 0; i < n_dofs; ++i)
                     for (unsigned int j = 0; j < n_dofs; ++j)
                       {
-                        const double horizontal = phi[i][0] * phi[j][0] +
-                                                  phi[i][1] * phi[j][1];
+                        const double horizontal =
+                          phi[i][0] * phi[j][0] + phi[i][1] * phi[j][1];
                         cell_matrix(i, j) +=
-                          p * curvature *
-                          (horizontal - n_phi[i] * n_phi[j]) * JxW;
+                          p * curvature * (horizontal - n_phi[i] * n_phi[j]) *
+                          JxW;
                       }
               }
             if (post_face)
@@ -198,7 +198,8 @@ namespace densify
       {
         result.normal_force[t] =
           Utilities::MPI::sum(result.normal_force[t], comm);
-        result.axial_force[t] = Utilities::MPI::sum(result.axial_force[t], comm);
+        result.axial_force[t] =
+          Utilities::MPI::sum(result.axial_force[t], comm);
       }
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);

@@ -117,6 +117,8 @@ namespace densify
   std::string
   J2Plasticity::name() const
   {
+    if (!std::isfinite(parameters.sigma0))
+      return "Hencky hyperelastic, finite strain (" + parameters.label + ")";
     return "J2 finite strain (" + parameters.label + ", " +
            hardening_name(parameters.hardening) + ")";
   }

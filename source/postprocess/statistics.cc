@@ -24,7 +24,7 @@ namespace densify
            "die_wall_force,relative_density,newton_iterations,"
            "linear_iterations,wall_seconds,die_wall_radial_force,"
            "stabilisation_force,max_penetration,augmentations,"
-           "particle_volume,step_seconds";
+           "particle_volume,step_seconds,increments,cutbacks";
   }
 
 
@@ -36,12 +36,12 @@ namespace densify
         << s.punch_displacement << ',' << s.upper_punch_force << ','
         << s.lower_punch_force << ',' << s.die_wall_force << ','
         << s.relative_density << ',' << s.newton_iterations << ','
-        << s.linear_iterations << ',' << std::setprecision(4)
-        << s.wall_seconds << ',' << std::setprecision(10)
-        << s.die_wall_radial_force << ',' << std::setprecision(4)
-        << s.stabilisation_force << ',' << s.max_penetration << ','
-        << s.augmentations << ',' << std::setprecision(10)
-        << s.particle_volume << ',' << std::setprecision(4) << s.step_seconds
-        << std::endl;
+        << s.linear_iterations << ',' << std::setprecision(4) << s.wall_seconds
+        << ',' << std::setprecision(10) << s.die_wall_radial_force << ','
+        << std::setprecision(4) << s.stabilisation_force << ','
+        << s.max_penetration << ',' << s.augmentations << ','
+        << std::setprecision(10) << s.particle_volume << ','
+        << std::setprecision(4) << s.step_seconds << ',' << s.increments << ','
+        << s.cutbacks << std::endl;
   }
 } // namespace densify

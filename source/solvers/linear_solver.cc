@@ -1,4 +1,5 @@
-// The linear solver of each Newton step: CG with ML AMG fed the rigid-body modes, or a direct solver.
+// The linear solver of each Newton step: CG with ML AMG fed the rigid-body
+// modes, or a direct solver.
 #include <deal.II/base/quadrature.h>
 
 #include <deal.II/lac/solver_control.h>
@@ -10,6 +11,7 @@
 
 #include <Teuchos_ParameterList.hpp>
 #include <ml_MultiLevelPreconditioner.h>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -39,7 +41,7 @@ namespace densify
     null_space.assign(6 * n_local, 0.);
 
     // centre of the owned support points, to keep the rotation modes O(size)
-    FEValues<3> fe_values(mapping,
+    FEValues<3>                          fe_values(mapping,
                           fe,
                           Quadrature<3>(fe.get_unit_support_points()),
                           update_quadrature_points);
@@ -57,7 +59,7 @@ namespace densify
               const unsigned int row = locally_owned.index_within_set(dofs[i]);
               if (done[row])
                 continue;
-              done[row]          = true;
+              done[row]            = true;
               const unsigned int c = fe.system_to_component_index(i).first;
               const Point<3>    &x = fe_values.quadrature_point(i);
               // translations
@@ -86,7 +88,7 @@ namespace densify
         TimerOutput::Scope t(timer, "Solve: direct");
         TrilinosWrappers::SolverDirect::AdditionalData data(false,
                                                             "Amesos_Klu");
-        TrilinosWrappers::SolverDirect solver(control, data);
+        TrilinosWrappers::SolverDirect                 solver(control, data);
         solver.solve(matrix, x, b);
         return 1;
       }
@@ -99,9 +101,9 @@ namespace densify
       {
         // a reused hierarchy gets a bounded number of iterations; if that
         // is not enough, it is rebuilt and the solve repeated
-        SolverControl short_control(
-          std::min(max_iterations, 3 * iterations_after_setup + 20),
-          control.tolerance());
+        SolverControl              short_control(std::min(max_iterations,
+                                             3 * iterations_after_setup + 20),
+                                    control.tolerance());
         TimerOutput::Scope         t(timer, "Solve: CG");
         TrilinosWrappers::SolverCG cg(short_control);
         try
@@ -111,11 +113,9 @@ namespace densify
             return last_iterations;
           }
         catch (const SolverControl::NoConvergence &)
-          {
-          }
+          {}
         catch (const ExceptionBase &)
-          {
-          }
+          {}
         x = 0;
         setup_amg(matrix);
       }

@@ -1,4 +1,5 @@
-// The rigid tools as analytic surfaces: lower punch, upper punch (planes) and die wall (cylinder).
+// The rigid tools as analytic surfaces: lower punch, upper punch (planes) and
+// die wall (cylinder).
 #pragma once
 
 #include <deal.II/base/point.h>

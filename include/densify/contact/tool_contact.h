@@ -1,4 +1,5 @@
-// Augmented-Lagrangian normal contact between particle surfaces and the rigid tools.
+// Augmented-Lagrangian normal contact between particle surfaces and the rigid
+// tools.
 #pragma once
 
 #include <deal.II/base/quadrature.h>
@@ -51,7 +52,7 @@ namespace densify
      * multiplier to zero. @p penalty_per_particle[material_id] is eps (MPa/mm).
      */
     void
-    setup(const DoFHandler<3>         &dof_handler,
+    setup(const DoFHandler<3>          &dof_handler,
           const std::vector<RigidTool> &tools,
           const std::vector<double>    &penalty_per_particle,
           const unsigned int            quadrature_points_1d);
@@ -78,7 +79,7 @@ namespace densify
      * afterwards.
      */
     ToolContactResult
-    assemble(const Mapping<3>                     &mapping,
+    assemble(const Mapping<3>                    &mapping,
              const TrilinosWrappers::MPI::Vector &solution,
              TrilinosWrappers::MPI::Vector       &residual,
              TrilinosWrappers::SparseMatrix      *matrix,
@@ -86,12 +87,12 @@ namespace densify
 
     /// Evaluate forces and penetration only (summed over ranks).
     ToolContactResult
-    evaluate(const Mapping<3>                     &mapping,
+    evaluate(const Mapping<3>                    &mapping,
              const TrilinosWrappers::MPI::Vector &solution) const;
 
     /// lambda <- max(0, lambda - eps g) at every quadrature point.
     void
-    update_multipliers(const Mapping<3>                     &mapping,
+    update_multipliers(const Mapping<3>                    &mapping,
                        const TrilinosWrappers::MPI::Vector &solution);
 
     /**
@@ -100,36 +101,43 @@ namespace densify
      * int phi_i p to @p weighted and int phi_i to @p weights on the surface.
      */
     void
-    project_pressure(const Mapping<3>                     &mapping,
+    project_pressure(const Mapping<3>                    &mapping,
                      const TrilinosWrappers::MPI::Vector &solution,
-                     const DoFHandler<3>                  &post_dof_handler,
+                     const DoFHandler<3>                 &post_dof_handler,
                      TrilinosWrappers::MPI::Vector       &weighted,
                      TrilinosWrappers::MPI::Vector       &weights) const;
 
-    /// The multipliers, for checkpoints and tests.
+    /// The multipliers, for checkpoints, roll-back and tests.
     const std::vector<double> &
     multipliers() const
     {
       return lambda;
     }
 
+    /// Restore multipliers saved by multipliers() (same setup).
+    void
+    set_multipliers(const std::vector<double> &saved)
+    {
+      lambda = saved;
+    }
+
   private:
     /// One pass over all contact quadrature points; the core of the class.
     ToolContactResult
-    loop(const Mapping<3>                     &mapping,
+    loop(const Mapping<3>                    &mapping,
          const TrilinosWrappers::MPI::Vector &solution,
          TrilinosWrappers::MPI::Vector       *residual,
          TrilinosWrappers::SparseMatrix      *matrix,
          const double                         tangent_margin,
          std::vector<double>                 *new_lambda,
-         const DoFHandler<3>                  *post_dof_handler,
+         const DoFHandler<3>                 *post_dof_handler,
          TrilinosWrappers::MPI::Vector       *weighted,
          TrilinosWrappers::MPI::Vector       *weights) const;
 
-    const DoFHandler<3>                                  *dof_handler = nullptr;
-    std::vector<RigidTool>                                tool_list;
-    std::vector<double>                                   penalty;
-    Quadrature<2>                                         face_quadrature;
+    const DoFHandler<3>   *dof_handler = nullptr;
+    std::vector<RigidTool> tool_list;
+    std::vector<double>    penalty;
+    Quadrature<2>          face_quadrature;
     std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
                         faces;
     std::vector<double> lambda;

@@ -1,4 +1,5 @@
-// One triangulation holding every particle, with no vertex shared between particles.
+// One triangulation holding every particle, with no vertex shared between
+// particles.
 #pragma once
 
 #include <deal.II/grid/tria.h>

@@ -1,4 +1,5 @@
-// Particle data (centre, diameter, material) from the .prm or a CSV file, and its checks.
+// Particle data (centre, diameter, material) from the .prm or a CSV file, and
+// its checks.
 #pragma once
 
 #include <deal.II/base/point.h>
@@ -10,7 +11,8 @@ namespace densify
 {
   using namespace dealii;
 
-  /// One powder particle before meshing: a sphere (mm) made of a named material.
+  /// One powder particle before meshing: a sphere (mm) made of a named
+  /// material.
   struct Particle
   {
     /// Centre (mm).

@@ -29,7 +29,8 @@ namespace densify
     /// Target element size away from refinement points (mm), > 0.
     double element_size = 0.3;
     /// Directions (need not be unit) from the centre to surface points
-    /// towards which the mesh is refined, e.g. (0,0,1) and (0,0,-1) for the poles.
+    /// towards which the mesh is refined, e.g. (0,0,1) and (0,0,-1) for the
+    /// poles.
     std::vector<Tensor<1, 3>> refinement_directions;
     /// Element size at the refinement points (mm); ignored if there are none.
     double refined_element_size = 0.1;

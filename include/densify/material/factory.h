@@ -11,9 +11,11 @@ namespace densify
 {
   /**
    * The law for material @p name ("Sn", "Fe", "Cu" or "custom", whose
-   * constants come from @p custom). Throws std::runtime_error naming the
-   * allowed names for anything else.
+   * constants come from @p prm) under the model, kinematics and hardening of
+   * @p prm: small-strain LinearElastic, finite-strain Hencky elasticity (J2
+   * with infinite yield stress, no history) or J2Plasticity. Throws
+   * std::runtime_error naming the entry to fix.
    */
   std::shared_ptr<const Material>
-  create_material(const std::string &name, const MaterialParameters &custom);
+  create_material(const std::string &name, const MaterialParameters &prm);
 } // namespace densify

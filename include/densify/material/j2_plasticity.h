@@ -5,6 +5,7 @@
 
 #include <densify/material/material.h>
 
+#include <cmath>
 #include <string>
 
 namespace densify
@@ -90,10 +91,12 @@ namespace densify
     name() const override;
 
     /// Always true: the law keeps Cp^{-1} and eps_p.
+    /// True unless the yield stress is infinite (then the law is Hencky
+    /// hyperelasticity and needs no history).
     bool
     needs_history() const override
     {
-      return true;
+      return std::isfinite(parameters.sigma0);
     }
 
     /// Always false.

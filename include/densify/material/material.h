@@ -1,4 +1,5 @@
-// The constitutive-law interface of Densify: stress and tangent from the deformation gradient.
+// The constitutive-law interface of Densify: stress and tangent from the
+// deformation gradient.
 #pragma once
 
 #include <deal.II/base/symmetric_tensor.h>
@@ -79,7 +80,8 @@ namespace densify
   class LinearElastic : public Material
   {
   public:
-    /// @p E Young's modulus (MPa), @p nu Poisson's ratio, @p label shown in the log.
+    /// @p E Young's modulus (MPa), @p nu Poisson's ratio, @p label shown in the
+    /// log.
     LinearElastic(const double E, const double nu, const std::string &label);
 
     std::string
@@ -105,7 +107,7 @@ namespace densify
     }
 
   private:
-    const double E, nu, lambda, mu;
+    const double      E, nu, lambda, mu;
     const std::string label;
     Tensor<4, 3>      C;
   };

@@ -10,18 +10,23 @@ namespace densify
   /// What happened in one load step (forces in N, positive in compression).
   struct StepStatistics
   {
+    /// Load step number, 1 ... N.
     unsigned int step = 0;
     /// Time at the end of the step (s).
     double time = 0.;
     /// Downward displacement of the upper punch (mm).
     double punch_displacement = 0.;
-    double upper_punch_force  = 0.;
-    double lower_punch_force  = 0.;
+    /// Normal force on the upper punch (N).
+    double upper_punch_force = 0.;
+    /// Normal force on the lower punch (N).
+    double lower_punch_force = 0.;
     /// Axial force the die wall takes (N); upper = lower + die wall.
     double die_wall_force = 0.;
     /// Particle volume / (die area x punch gap); NaN without die or punches.
     double relative_density = 0.;
+    /// Newton iterations of the step, over all multiplier updates.
     unsigned int newton_iterations = 0;
+    /// CG iterations of the step.
     unsigned int linear_iterations = 0;
     /// Wall time since the start of the run (s).
     double wall_seconds = 0.;
@@ -38,6 +43,10 @@ namespace densify
     double particle_volume = 0.;
     /// Wall time of this step (s).
     double step_seconds = 0.;
+    /// Increments the step took (1 without cut-back).
+    unsigned int increments = 0;
+    /// Increments rolled back and retried with half the size.
+    unsigned int cutbacks = 0;
   };
 
   /**

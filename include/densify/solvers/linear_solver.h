@@ -1,4 +1,5 @@
-// The linear solver of each Newton step: CG with ML AMG fed the rigid-body modes, or a direct solver.
+// The linear solver of each Newton step: CG with ML AMG fed the rigid-body
+// modes, or a direct solver.
 #pragma once
 
 #include <deal.II/base/timer.h>
@@ -78,16 +79,16 @@ namespace densify
     void
     setup_amg(const TrilinosWrappers::SparseMatrix &matrix);
 
-    const std::string   type;
-    const double        tolerance;
-    const unsigned int  max_iterations;
-    const bool          reuse_amg;
-    TimerOutput        &timer;
-    unsigned int        iterations_after_setup = 0;
-    unsigned int        last_iterations        = 0;
-    unsigned int        n_setups               = 0;
+    const std::string  type;
+    const double       tolerance;
+    const unsigned int max_iterations;
+    const bool         reuse_amg;
+    TimerOutput       &timer;
+    unsigned int       iterations_after_setup = 0;
+    unsigned int       last_iterations        = 0;
+    unsigned int       n_setups               = 0;
     /// Column-major: mode k of local row i at [k * n_local + i].
-    std::vector<double> null_space;
+    std::vector<double>                                null_space;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
   };
 } // namespace densify
