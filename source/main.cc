@@ -7,6 +7,7 @@
 #include <densify/simulator.h>
 
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -111,22 +112,29 @@ main(int argc, char **argv)
       return 0;
     }
 
+  // the simulator outlives the catch blocks, so that it is not destroyed
+  // while an exception is in flight (its timer would then skip its summary
+  // and print a warning)
+  std::unique_ptr<Simulator> simulator;
+  std::string                error;
   try
     {
-      Simulator simulator(parameters, MPI_COMM_WORLD);
-      simulator.run();
+      simulator = std::make_unique<Simulator>(parameters, MPI_COMM_WORLD);
+      simulator->run();
     }
   catch (const std::exception &e)
     {
-      return fail(e.what(), 1);
+      error = e.what();
     }
   catch (const std::string &e) // gmsh throws strings
     {
-      return fail("gmsh: " + e, 1);
+      error = "gmsh: " + e;
     }
   catch (...)
     {
-      return fail("unknown exception", 1);
+      error = "unknown exception";
     }
+  if (!error.empty())
+    return fail(error, 1);
   return 0;
 }

@@ -432,7 +432,7 @@ namespace densify
         E_max = std::max(E_max, particle_material[p]->youngs_modulus());
         D_max = std::max(D_max, particles[p].diameter);
       }
-    const double floor = 1e-14 * E_max * D_max * D_max;
+    const double floor = 1e-12 * E_max * D_max * D_max;
     const double tol   = prm.solver.newton_tolerance;
 
     unsigned int   linear_iterations = 0;

@@ -47,7 +47,7 @@ namespace densify
     /// "elastic" or "J2 plasticity".
     std::string model = "elastic";
     /// Finite-strain kinematics (false: small strain, elastic only).
-    bool finite_strain = true;
+    bool finite_strain = false;
     /// "none", "linear" or "power law".
     std::string hardening = "none";
     /// Initial yield stress of "custom" (MPa).

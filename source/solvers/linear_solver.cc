@@ -142,7 +142,31 @@ namespace densify
           // and Newton's own check decides whether that suffices
           std::ostringstream info;
           e.print_info(info);
-          if (info.str().find("loss of precision") == std::string::npos)
+          if (info.str().find("loss of precision") != std::string::npos)
+            ;
+          else if (info.str().find("breakdown") != std::string::npos)
+            {
+              // an indefinite tangent (finite-strain geometric stiffness
+              // under compression): GMRES does not need definiteness
+              TimerOutput::Scope            t(timer, "Solve: GMRES fallback");
+              TrilinosWrappers::SolverGMRES gmres(
+                control,
+                TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
+              x = 0;
+              try
+                {
+                  gmres.solve(matrix, x, b, *amg);
+                }
+              catch (const SolverControl::NoConvergence &e)
+                {
+                  throw std::runtime_error(
+                    "CG broke down (indefinite tangent) and GMRES did not "
+                    "converge in " +
+                    std::to_string(e.last_step) + " iterations");
+                }
+              ++n_gmres;
+            }
+          else
             throw std::runtime_error("CG failed: " + info.str());
         }
     }

@@ -51,6 +51,13 @@ namespace densify
       amg.reset();
     }
 
+    /// Number of solves that needed the GMRES fallback.
+    unsigned int
+    n_gmres_fallbacks() const
+    {
+      return n_gmres;
+    }
+
     /// Number of AMG setups so far.
     unsigned int
     n_amg_setups() const
@@ -87,6 +94,7 @@ namespace densify
     unsigned int       iterations_after_setup = 0;
     unsigned int       last_iterations        = 0;
     unsigned int       n_setups               = 0;
+    unsigned int       n_gmres                = 0;
     /// Column-major: mode k of local row i at [k * n_local + i].
     std::vector<double>                                null_space;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
