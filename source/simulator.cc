@@ -462,9 +462,14 @@ namespace densify
             last_stabilisation_force = f_s.l1_norm();
           }
 
+        // step limiter: no node moves by more than half the smallest element
+        // size in one Newton iteration (nearly free rigid-body modes would
+        // otherwise take huge, at finite strain distorting, steps)
+        const double max_step = increment.linfty_norm();
+        const double limit    = 0.5 * h_min;
         // backtracking line search on the residual norm
         const double   r0 = current.residual_norm;
-        double         s  = 1.;
+        double         s  = (max_step > limit ? limit / max_step : 1.);
         AssemblyResult trial;
         bool           have_matrix = true;
         for (unsigned int ls = 0;; ++ls)
