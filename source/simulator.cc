@@ -502,32 +502,60 @@ namespace densify
 
 
 
-  std::vector<double>
-  Simulator::particle_volumes() const
+  std::vector<Simulator::ParticleMeasure>
+  Simulator::measure_particles() const
   {
     const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
     FEValues<3>                      fe_values(*mapping,
                           *fe,
                           quadrature,
-                          update_gradients | update_JxW_values);
+                          update_values | update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
     std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
-    std::vector<double>              volume(particles.size(), 0.);
     TrilinosWrappers::MPI::Vector    ghosted(locally_owned,
                                           locally_relevant,
                                           comm);
     ghosted = solution;
+    // per particle: current volume, reference volume, integral of u
+    std::vector<double> sums(5 * particles.size(), 0.);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
+          fe_values[u].get_function_values(ghosted, u_q);
           fe_values[u].get_function_gradients(ghosted, grad_u);
+          double *sum = &sums[5 * cell->material_id()];
           for (unsigned int q = 0; q < quadrature.size(); ++q)
-            volume[cell->material_id()] +=
-              determinant(unit_symmetric_tensor<3>() + grad_u[q]) *
-              fe_values.JxW(q);
+            {
+              const double JxW = fe_values.JxW(q);
+              sum[0] +=
+                determinant(unit_symmetric_tensor<3>() + grad_u[q]) * JxW;
+              sum[1] += JxW;
+              for (unsigned int d = 0; d < 3; ++d)
+                sum[2 + d] += u_q[q][d] * JxW;
+            }
         }
-    Utilities::MPI::sum(volume, comm, volume);
+    Utilities::MPI::sum(sums, comm, sums);
+    std::vector<ParticleMeasure> measures(particles.size());
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        measures[p].volume = sums[5 * p];
+        for (unsigned int d = 0; d < 3; ++d)
+          measures[p].mean_displacement[d] =
+            sums[5 * p + 2 + d] / sums[5 * p + 1];
+      }
+    return measures;
+  }
+
+
+
+  std::vector<double>
+  Simulator::particle_volumes() const
+  {
+    std::vector<double> volume;
+    for (const ParticleMeasure &m : measure_particles())
+      volume.push_back(m.volume);
     return volume;
   }
 
@@ -536,36 +564,9 @@ namespace densify
   std::vector<Tensor<1, 3>>
   Simulator::particle_mean_displacements() const
   {
-    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
-    FEValues<3>                      fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_values | update_JxW_values);
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
-    std::vector<double>              sums(4 * particles.size(), 0.);
-    TrilinosWrappers::MPI::Vector    ghosted(locally_owned,
-                                          locally_relevant,
-                                          comm);
-    ghosted = solution;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[u].get_function_values(ghosted, u_q);
-          const unsigned int p = cell->material_id();
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              for (unsigned int d = 0; d < 3; ++d)
-                sums[4 * p + d] += u_q[q][d] * fe_values.JxW(q);
-              sums[4 * p + 3] += fe_values.JxW(q);
-            }
-        }
-    Utilities::MPI::sum(sums, comm, sums);
-    std::vector<Tensor<1, 3>> mean(particles.size());
-    for (unsigned int p = 0; p < particles.size(); ++p)
-      for (unsigned int d = 0; d < 3; ++d)
-        mean[p][d] = sums[4 * p + d] / sums[4 * p + 3];
+    std::vector<Tensor<1, 3>> mean;
+    for (const ParticleMeasure &m : measure_particles())
+      mean.push_back(m.mean_displacement);
     return mean;
   }
 

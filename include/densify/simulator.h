@@ -94,6 +94,19 @@ namespace densify
     particle_mean_displacements() const;
 
   private:
+    /// Measures of one particle in the current state.
+    struct ParticleMeasure
+    {
+      /// Current volume (mm^3).
+      double volume = 0.;
+      /// Volume-weighted mean displacement (mm).
+      Tensor<1, 3> mean_displacement;
+    };
+
+    /// Measure every particle (one pass over the cells; on every rank).
+    std::vector<ParticleMeasure>
+    measure_particles() const;
+
     /// Result of assemble().
     struct AssemblyResult
     {
