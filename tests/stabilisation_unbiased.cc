@@ -1,6 +1,7 @@
 // The stabilisation acts on the Newton tangent only: the converged forces and
 // the vertical displacements do not depend on its size (beta = 1e-6 vs
 // 1e-2), while the force it reports stays far below the contact forces.
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>
@@ -51,6 +52,8 @@ main(int argc, char **argv)
 {
   using namespace densify;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ConditionalOStream               out(std::cout,
+                         Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   const Result                     small = run("1e-6");
   const Result                     large = run("1e-2");
   bool                             ok    = true;
@@ -62,11 +65,11 @@ main(int argc, char **argv)
       const bool   tiny = small.steps[i].stabilisation_force < 1e-6 * F &&
                         large.steps[i].stabilisation_force < 1e-6 * F;
       ok = ok && same && tiny;
-      std::cout << "step " << i + 1 << ": F_upper " << std::setprecision(6) << F
-                << " N, same with beta = 1e-2 (1e-7 relative): "
-                << (same ? "yes" : "NO")
-                << ", stabilisation force below 1e-6 F: "
-                << (tiny ? "yes" : "NO") << std::endl;
+      out << "step " << i + 1 << ": F_upper " << std::setprecision(6) << F
+          << " N, same with beta = 1e-2 (1e-7 relative): "
+          << (same ? "yes" : "NO")
+          << ", stabilisation force below 1e-6 F: " << (tiny ? "yes" : "NO")
+          << std::endl;
     }
   // the vertical motion is determined by equilibrium and must not depend on
   // beta; the lateral position of a particle between frictionless plates is
@@ -80,9 +83,9 @@ main(int argc, char **argv)
         bounded = bounded && std::abs(r->drift[p][0]) < 1e-6 &&
                   std::abs(r->drift[p][1]) < 1e-6;
     }
-  std::cout << "vertical mean displacements agree to 1e-10 mm: "
-            << (same_state ? "yes" : "NO") << std::endl
-            << "lateral (neutral) drift below 1e-6 mm: "
-            << (bounded ? "yes" : "NO") << std::endl;
+  out << "vertical mean displacements agree to 1e-10 mm: "
+      << (same_state ? "yes" : "NO") << std::endl
+      << "lateral (neutral) drift below 1e-6 mm: " << (bounded ? "yes" : "NO")
+      << std::endl;
   return (ok && same_state && bounded) ? 0 : 1;
 }
