@@ -525,12 +525,18 @@ namespace densify
           fe_values.reinit(cell);
           fe_values[u].get_function_values(ghosted, u_q);
           fe_values[u].get_function_gradients(ghosted, grad_u);
-          double *sum = &sums[5 * cell->material_id()];
+          double    *sum = &sums[5 * cell->material_id()];
+          const bool finite =
+            particle_material[cell->material_id()]->finite_strain();
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const double JxW = fe_values.JxW(q);
+              // volume as the kinematics of the particle's law sees it
+              // (det F is not rotation-free for linearised rotations)
               sum[0] +=
-                determinant(unit_symmetric_tensor<3>() + grad_u[q]) * JxW;
+                (finite ? determinant(unit_symmetric_tensor<3>() + grad_u[q]) :
+                          1. + trace(grad_u[q])) *
+                JxW;
               sum[1] += JxW;
               for (unsigned int d = 0; d < 3; ++d)
                 sum[2 + d] += u_q[q][d] * JxW;
@@ -903,6 +909,15 @@ namespace densify
     if (this_rank == 0)
       statistics_writer = std::make_unique<StatisticsWriter>(
         prm.output.directory + "/statistics.csv");
+    for (const ParticleMeasure &m : measure_particles())
+      initial_volumes.push_back(m.volume);
+    if (this_rank == 0)
+      {
+        particle_file.open(prm.output.directory + "/particles.csv");
+        particle_file << "step,particle,material,volume,initial_volume,"
+                         "mean_displacement_x,mean_displacement_y,"
+                         "mean_displacement_z\n";
+      }
 
     const unsigned int n_steps = prm.time.n_steps;
     for (unsigned int step = 1; step <= n_steps; ++step)
@@ -928,8 +943,21 @@ namespace densify
         s.die_wall_radial_force = contact.normal_force[die_kind];
         s.stabilisation_force   = last_stabilisation_force;
         s.max_penetration       = contact.max_penetration;
-        for (const double v : particle_volumes())
-          s.particle_volume += v;
+        const std::vector<ParticleMeasure> measures = measure_particles();
+        for (const ParticleMeasure &m : measures)
+          s.particle_volume += m.volume;
+        if (this_rank == 0)
+          {
+            // one row per particle and step
+            for (unsigned int p = 0; p < particles.size(); ++p)
+              particle_file << step << ',' << p << ',' << particles[p].material
+                            << ',' << std::setprecision(10)
+                            << measures[p].volume << ',' << initial_volumes[p]
+                            << ',' << measures[p].mean_displacement[0] << ','
+                            << measures[p].mean_displacement[1] << ','
+                            << measures[p].mean_displacement[2] << '\n';
+            particle_file.flush();
+          }
         s.relative_density = density(s.particle_volume, upper);
 
         if (prm.output.interval > 0 &&

@@ -211,8 +211,12 @@ namespace densify
     std::unique_ptr<LinearSolver> linear_solver;
     double                        last_stabilisation_force = 0.;
 
-    std::vector<StepStatistics>                 step_statistics;
-    std::unique_ptr<StatisticsWriter>           statistics_writer;
+    std::vector<StepStatistics>       step_statistics;
+    std::unique_ptr<StatisticsWriter> statistics_writer;
+    /// particles.csv: per particle and step, volume and mean displacement.
+    std::ofstream particle_file;
+    /// Volume of each particle's mesh at the start (mm^3).
+    std::vector<double>                         initial_volumes;
     std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace densify

@@ -68,6 +68,14 @@ namespace densify
              Tensor<2, 3>        &P,
              Tensor<4, 3>        &A) const = 0;
 
+    /// True if the law uses finite-strain kinematics (then the current
+    /// volume is det F dV; for small strain it is (1 + tr grad u) dV).
+    virtual bool
+    finite_strain() const
+    {
+      return true;
+    }
+
     /// Young's modulus (MPa), used to scale penalties and stabilisation.
     virtual double
     youngs_modulus() const = 0;
@@ -91,6 +99,12 @@ namespace densify
     is_linear() const override
     {
       return true;
+    }
+
+    bool
+    finite_strain() const override
+    {
+      return false;
     }
 
     void
