@@ -476,7 +476,18 @@ namespace densify
           {
             solution.add(s, increment);
             have_matrix = (ls == 0);
-            trial       = assemble(have_matrix);
+            try
+              {
+                trial = assemble(have_matrix);
+              }
+            catch (const std::runtime_error &)
+              {
+                // e.g. an element inverted by the full step: try a shorter
+                // one (the failure is collective, so all ranks agree)
+                if (ls == 8)
+                  throw;
+                trial.residual_norm = std::numeric_limits<double>::infinity();
+              }
             if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
               break;
             solution.add(-s, increment);
