@@ -14,6 +14,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
@@ -896,6 +897,28 @@ namespace densify
     for (const RigidTool &tool : tool_contact.tools())
       pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
     pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
+
+    // particle-particle contact is not implemented yet: say so when
+    // particles touch, instead of letting them pass through each other
+    {
+      double d_min = std::numeric_limits<double>::max();
+      for (const Particle &p : particles)
+        d_min = std::min(d_min, p.diameter);
+      const double margin   = 0.01 * d_min;
+      unsigned int touching = 0;
+      for (const auto &[i, j] :
+           find_candidate_pairs(bounding_boxes(particles), margin))
+        if (particles[i].centre.distance(particles[j].centre) <=
+            (particles[i].diameter + particles[j].diameter) / 2 + margin)
+          ++touching;
+      if (touching > 0)
+        pcout << "warning: " << touching
+              << " pair(s) of particles touch or nearly touch, but "
+                 "particle-particle contact is not implemented yet: they "
+                 "can pass through each other (results for them are not "
+                 "physical)"
+              << std::endl;
+    }
 
     const double die_area =
       numbers::PI * std::pow(prm.tools.die_diameter / 2, 2);
