@@ -20,6 +20,7 @@
 #include <densify/scene.h>
 #include <densify/simulator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -893,10 +894,21 @@ namespace densify
           << triangulation.n_active_cells() << " tetrahedra, " << n_dofs()
           << " DoFs (P" << prm.mesh.degree << "), " << n_ranks << " MPI rank(s)"
           << std::endl;
-    pcout << "Active effects: " << particle_material[0]->name();
-    for (const RigidTool &tool : tool_contact.tools())
-      pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
-    pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
+    {
+      // every distinct material law once, then the tools and the solver
+      std::vector<std::string> laws;
+      for (const auto &m : particle_material)
+        if (std::find(laws.begin(), laws.end(), m->name()) == laws.end())
+          laws.push_back(m->name());
+      pcout << "Active effects: ";
+      for (unsigned int i = 0; i < laws.size(); ++i)
+        pcout << (i > 0 ? ", " : "") << laws[i];
+      for (const RigidTool &tool : tool_contact.tools())
+        pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
+      if (has_history)
+        pcout << ", plastic history";
+      pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
+    }
 
     // particle-particle contact is not implemented yet: say so when
     // particles touch, instead of letting them pass through each other
