@@ -135,6 +135,10 @@ main(int argc, char **argv)
       error = "unknown exception";
     }
   if (!error.empty())
-    return fail(error, 1);
+    {
+      if (simulator)
+        simulator->write_to_log_file("densify: error: " + error);
+      return fail(error, 1);
+    }
   return 0;
 }

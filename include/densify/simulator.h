@@ -64,6 +64,14 @@ namespace densify
     void
     setup();
 
+    /// Append a line to log.txt only (e.g. the error that ended a run).
+    void
+    write_to_log_file(const std::string &line)
+    {
+      if (log_file.is_open())
+        log_file << line << std::endl;
+    }
+
     /// Statistics of the steps done so far.
     const std::vector<StepStatistics> &
     statistics() const

@@ -18,3 +18,5 @@ printf '%s' "$out" | grep -q "Newton did not converge" || exit 1
 head -n 1 out/statistics.csv | grep -q '^step,time,punch_displacement'
 [ "$(wc -l < out/statistics.csv)" -le 2 ] || exit 1
 grep -q "Densify:" out/log.txt
+# the reason is in the log too
+grep -q "densify: error: step 1: Newton did not converge" out/log.txt
