@@ -5,6 +5,7 @@
 #include <densify/parameters.h>
 #include <densify/scene.h>
 #include <densify/simulator.h>
+#include <densify/utilities.h>
 
 #include <iostream>
 #include <memory>
@@ -39,9 +40,10 @@ main(int argc, char **argv)
   const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   auto       fail = [&](const std::string &message, const int code) {
     if (root)
-      std::cerr << "densify: error: " << message << std::endl;
+      std::cerr << "densify: error: " << one_line(message) << std::endl;
     return code;
   };
+
 
   std::string              filename;
   std::vector<std::string> overrides;

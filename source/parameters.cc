@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <densify/parameters.h>
+#include <densify/utilities.h>
 
 #include <algorithm>
 #include <fstream>
@@ -298,22 +299,7 @@ namespace densify
     {
       std::ostringstream info;
       e.print_info(info);
-      std::string text = info.str(), out;
-      for (const char c : text)
-        if (c == '\n' || c == '\t')
-          out += ' ';
-        else
-          out += c;
-      // collapse runs of blanks
-      std::string collapsed;
-      for (const char c : out)
-        if (!(c == ' ' && !collapsed.empty() && collapsed.back() == ' '))
-          collapsed += c;
-      while (!collapsed.empty() && collapsed.back() == ' ')
-        collapsed.pop_back();
-      while (!collapsed.empty() && collapsed.front() == ' ')
-        collapsed.erase(collapsed.begin());
-      return collapsed;
+      return densify::one_line(info.str());
     }
   } // namespace
 

@@ -19,6 +19,7 @@
 #include <densify/material/factory.h>
 #include <densify/scene.h>
 #include <densify/simulator.h>
+#include <densify/utilities.h>
 
 #include <algorithm>
 #include <cmath>
@@ -684,7 +685,7 @@ namespace densify
             ++s.cutbacks;
             pcout << "  step " << step << ": increment cut back to "
                   << std::setprecision(3) << dt / step_length << " of a step ("
-                  << e.what() << ")" << std::endl;
+                  << one_line(e.what()) << ")" << std::endl;
             continue;
           }
         // accepted: commit the history

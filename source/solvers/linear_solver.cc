@@ -164,6 +164,15 @@ namespace densify
                     "converge in " +
                     std::to_string(e.last_step) + " iterations");
                 }
+              catch (const ExceptionBase &e)
+                {
+                  std::ostringstream gmres_info;
+                  e.print_info(gmres_info);
+                  if (gmres_info.str().find("loss of precision") ==
+                      std::string::npos)
+                    throw std::runtime_error(
+                      "CG broke down and GMRES failed: " + gmres_info.str());
+                }
               ++n_gmres;
             }
           else
