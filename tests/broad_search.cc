@@ -3,6 +3,8 @@
 // inputs.
 #include <densify/contact/broad_search.h>
 
+#include "test_utilities.h"
+
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -13,18 +15,11 @@
 
 using namespace densify;
 
+using densify::testing::all_passed;
+using densify::testing::yes;
+
 namespace
 {
-  /// Set when any check fails, so that the test also fails by exit code.
-  bool all_passed = true;
-
-  /// "yes" or "no", remembering a "no".
-  std::string
-  yes(const bool ok)
-  {
-    all_passed = all_passed && ok;
-    return ok ? "yes" : "no";
-  }
 
 
 

@@ -8,24 +8,19 @@
 
 #include <densify/geometry/multi_body_mesh.h>
 
+#include "test_utilities.h"
+
 #include <cmath>
 #include <iostream>
 #include <string>
 
 using namespace densify;
 
+using densify::testing::all_passed;
+using densify::testing::yes;
+
 namespace
 {
-  /// Set when any check fails, so that the test also fails by exit code.
-  bool all_passed = true;
-
-  /// "yes" or "no", remembering a "no".
-  std::string
-  yes(const bool ok)
-  {
-    all_passed = all_passed && ok;
-    return ok ? "yes" : "no";
-  }
 
 
 

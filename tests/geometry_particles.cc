@@ -3,6 +3,8 @@
 
 #include <densify/geometry/particles.h>
 
+#include "test_utilities.h"
+
 #include <cstdint>
 #include <fstream>
 #include <iostream>
@@ -12,18 +14,11 @@
 
 using namespace densify;
 
+using densify::testing::all_passed;
+using densify::testing::yes;
+
 namespace
 {
-  /// Set when any check fails, so that the test also fails by exit code.
-  bool all_passed = true;
-
-  /// "yes" or "no", remembering a "no".
-  std::string
-  yes(const bool ok)
-  {
-    all_passed = all_passed && ok;
-    return ok ? "yes" : "no";
-  }
 
 
 

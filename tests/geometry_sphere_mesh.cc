@@ -10,6 +10,7 @@
 
 #include <densify/geometry/sphere_mesher.h>
 
+#include "test_utilities.h"
 #include <gmsh.h>
 
 #include <algorithm>
@@ -23,18 +24,11 @@
 
 using namespace densify;
 
+using densify::testing::all_passed;
+using densify::testing::yes;
+
 namespace
 {
-  /// Set when any check fails, so that the test also fails by exit code.
-  bool all_passed = true;
-
-  /// "yes" or "no", remembering a "no".
-  std::string
-  yes(const bool ok)
-  {
-    all_passed = all_passed && ok;
-    return ok ? "yes" : "no";
-  }
 
 
 

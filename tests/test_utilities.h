@@ -14,6 +14,17 @@ namespace densify
 {
   namespace testing
   {
+    /// Set when any check fails, so that the test also fails by exit code.
+    inline bool all_passed = true;
+
+    /// "yes" or "no", remembering a "no" in all_passed.
+    inline std::string
+    yes(const bool ok)
+    {
+      all_passed = all_passed && ok;
+      return ok ? "yes" : "no";
+    }
+
     /// The source directory (from the DENSIFY_SOURCE_DIR environment variable).
     inline std::string
     source_dir()
