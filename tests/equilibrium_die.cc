@@ -23,15 +23,12 @@ main(int argc, char **argv)
   testing::read_scene(parameters,
                       prm,
                       "hertz.prm",
-                      {"Output/Directory=output",
-                       "Output/Interval=0",
-                       "Mesh/Polynomial degree=1",
-                       "Mesh/Element size=0.4",
-                       "Mesh/Refinement directions=",
-                       "Tools/Die wall/Enabled=true",
-                       "Tools/Die wall/Diameter=2.5",
-                       "Tools/Upper punch/Displacement history=0:0, 1:0.25",
-                       "Time stepping/Number of steps=3"});
+                      testing::coarse_sphere(
+                        "output",
+                        {"Tools/Die wall/Enabled=true",
+                         "Tools/Die wall/Diameter=2.5",
+                         "Tools/Upper punch/Displacement history=0:0, 1:0.25",
+                         "Time stepping/Number of steps=3"}));
   Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 

@@ -23,15 +23,8 @@ main(int argc, char **argv)
   testing::read_scene(parameters,
                       prm,
                       "hertz.prm",
-                      {"Output/Directory=output",
-                       "Output/Interval=0",
-                       "Mesh/Polynomial degree=1",
-                       "Mesh/Element size=0.4",
-                       "Mesh/Refinement directions=",
-                       "Particles/Centres=0,0,1.25; 4,0,1.25",
-                       "Particles/Diameters=2.5, 1.5",
-                       "Tools/Upper punch/Displacement history=0:0, 1:0.1",
-                       "Time stepping/Number of steps=2"});
+                      testing::coarse_sphere("output",
+                                             testing::floating_scene()));
   Simulator                 simulator(parameters, MPI_COMM_WORLD, false);
   const std::vector<double> v0 = [&] {
     simulator.setup();

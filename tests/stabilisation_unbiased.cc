@@ -27,20 +27,13 @@ namespace
     using namespace densify;
     Parameters       parameters;
     ParameterHandler prm;
-    testing::read_scene(parameters,
-                        prm,
-                        "hertz.prm",
-                        {"Output/Directory=output_" + beta,
-                         "Output/Interval=0",
-                         "Mesh/Polynomial degree=1",
-                         "Mesh/Element size=0.4",
-                         "Mesh/Refinement directions=",
-                         "Particles/Centres=0,0,1.25; 4,0,1.25",
-                         "Particles/Diameters=2.5, 1.5",
-                         "Tools/Upper punch/Displacement history=0:0, 1:0.1",
-                         "Time stepping/Number of steps=2",
-                         "Solver/Newton tolerance=1e-11",
-                         "Solver/Stabilisation=" + beta});
+    testing::read_scene(parameters, prm, "hertz.prm", [&] {
+      auto o =
+        testing::coarse_sphere("output_" + beta, testing::floating_scene());
+      o.push_back("Solver/Newton tolerance=1e-11");
+      o.push_back("Solver/Stabilisation=" + beta);
+      return o;
+    }());
     Simulator simulator(parameters, MPI_COMM_WORLD, false);
     simulator.run();
     return {simulator.statistics(), simulator.particle_mean_displacements()};

@@ -33,6 +33,33 @@ namespace densify
       return dir != nullptr ? dir : ".";
     }
 
+    /**
+     * Overrides that shrink prm/hertz.prm to a coarse uniform P1 mesh without
+     * graphics, writing into @p directory, followed by @p extra.
+     */
+    inline std::vector<std::string>
+    coarse_sphere(const std::string &directory, std::vector<std::string> extra)
+    {
+      std::vector<std::string> overrides = {"Output/Directory=" + directory,
+                                            "Output/Interval=0",
+                                            "Mesh/Polynomial degree=1",
+                                            "Mesh/Element size=0.4",
+                                            "Mesh/Refinement directions="};
+      overrides.insert(overrides.end(), extra.begin(), extra.end());
+      return overrides;
+    }
+
+    /// The floating-particle scene: a pressed sphere (d = 2.5) and one
+    /// (d = 1.5) that touches nothing, pressed by 0.1 mm in two steps.
+    inline std::vector<std::string>
+    floating_scene()
+    {
+      return {"Particles/Centres=0,0,1.25; 4,0,1.25",
+              "Particles/Diameters=2.5, 1.5",
+              "Tools/Upper punch/Displacement history=0:0, 1:0.1",
+              "Time stepping/Number of steps=2"};
+    }
+
     /// Read prm/@p scene from the source tree into @p parameters, then apply
     /// @p overrides ("Sub/Name=value").
     inline void
