@@ -523,7 +523,8 @@ namespace densify
     FEValues<3>                      fe_values(*mapping,
                           *fe,
                           quadrature,
-                          update_values | update_gradients | update_JxW_values);
+                          update_values | update_gradients |
+                            update_quadrature_points | update_JxW_values);
     const FEValuesExtractors::Vector u(0);
     std::vector<Tensor<1, 3>>        u_q(quadrature.size());
     std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
@@ -531,17 +532,20 @@ namespace densify
                                           locally_relevant,
                                           comm);
     ghosted = solution;
-    // per particle: current volume, reference volume, integral of u
-    std::vector<double> sums(5 * particles.size(), 0.);
+    // per particle, with r = X - centre: [0] current volume, [1] reference
+    // volume, [2..4] int u, [5..7] int r x u, [8..10] int r, [11..19] the
+    // inertia tensor int (|r|^2 I - r r)
+    constexpr unsigned int n = 20;
+    std::vector<double>    sums(n * particles.size(), 0.);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[u].get_function_values(ghosted, u_q);
           fe_values[u].get_function_gradients(ghosted, grad_u);
-          double    *sum = &sums[5 * cell->material_id()];
-          const bool finite =
-            particle_material[cell->material_id()]->finite_strain();
+          const unsigned int p      = cell->material_id();
+          double            *sum    = &sums[n * p];
+          const bool         finite = particle_material[p]->finite_strain();
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const double JxW = fe_values.JxW(q);
@@ -552,18 +556,41 @@ namespace densify
                           1. + trace(grad_u[q])) *
                 JxW;
               sum[1] += JxW;
+              const Tensor<1, 3> r =
+                fe_values.quadrature_point(q) - particles[p].centre;
+              const Tensor<1, 3> r_x_u = cross_product_3d(r, u_q[q]);
               for (unsigned int d = 0; d < 3; ++d)
-                sum[2 + d] += u_q[q][d] * JxW;
+                {
+                  sum[2 + d] += u_q[q][d] * JxW;
+                  sum[5 + d] += r_x_u[d] * JxW;
+                  sum[8 + d] += r[d] * JxW;
+                  for (unsigned int e = 0; e < 3; ++e)
+                    sum[11 + 3 * d + e] +=
+                      ((d == e ? r * r : 0.) - r[d] * r[e]) * JxW;
+                }
             }
         }
     Utilities::MPI::sum(sums, comm, sums);
     std::vector<ParticleMeasure> measures(particles.size());
     for (unsigned int p = 0; p < particles.size(); ++p)
       {
-        measures[p].volume = sums[5 * p];
+        const double *sum  = &sums[n * p];
+        measures[p].volume = sum[0];
+        Tensor<1, 3> mean, moment, first;
+        Tensor<2, 3> inertia;
         for (unsigned int d = 0; d < 3; ++d)
-          measures[p].mean_displacement[d] =
-            sums[5 * p + 2 + d] / sums[5 * p + 1];
+          {
+            mean[d]   = sum[2 + d] / sum[1];
+            moment[d] = sum[5 + d];
+            first[d]  = sum[8 + d];
+            for (unsigned int e = 0; e < 3; ++e)
+              inertia[d][e] = sum[11 + 3 * d + e];
+          }
+        measures[p].mean_displacement = mean;
+        // rigid rotation u = w x r gives int r x u = I w; the translation
+        // part is taken out first
+        measures[p].rotation =
+          invert(inertia) * (moment - cross_product_3d(first, mean));
       }
     return measures;
   }
@@ -961,9 +988,10 @@ namespace densify
     if (this_rank == 0)
       {
         particle_file.open(prm.output.directory + "/particles.csv");
-        particle_file << "step,particle,material,volume,initial_volume,"
-                         "mean_displacement_x,mean_displacement_y,"
-                         "mean_displacement_z\n";
+        particle_file
+          << "step,particle,material,volume,initial_volume,"
+             "mean_displacement_x,mean_displacement_y,"
+             "mean_displacement_z,rotation_x,rotation_y,rotation_z\n";
       }
 
     const unsigned int n_steps = prm.time.n_steps;
@@ -997,12 +1025,14 @@ namespace densify
           {
             // one row per particle and step
             for (unsigned int p = 0; p < particles.size(); ++p)
-              particle_file << step << ',' << p << ',' << particles[p].material
-                            << ',' << std::setprecision(10)
-                            << measures[p].volume << ',' << initial_volumes[p]
-                            << ',' << measures[p].mean_displacement[0] << ','
-                            << measures[p].mean_displacement[1] << ','
-                            << measures[p].mean_displacement[2] << '\n';
+              particle_file
+                << step << ',' << p << ',' << particles[p].material << ','
+                << std::setprecision(10) << measures[p].volume << ','
+                << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
+                << ',' << measures[p].mean_displacement[1] << ','
+                << measures[p].mean_displacement[2] << ','
+                << measures[p].rotation[0] << ',' << measures[p].rotation[1]
+                << ',' << measures[p].rotation[2] << '\n';
             particle_file.flush();
           }
         s.relative_density = density(s.particle_volume, upper);

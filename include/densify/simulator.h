@@ -109,6 +109,9 @@ namespace densify
       double volume = 0.;
       /// Volume-weighted mean displacement (mm).
       Tensor<1, 3> mean_displacement;
+      /// Mean rigid rotation vector (rad; small-rotation measure): the
+      /// w that best fits u = w x (X - centre) after the mean translation.
+      Tensor<1, 3> rotation;
     };
 
     /// Measure every particle (one pass over the cells; on every rank).
