@@ -3,7 +3,8 @@
 # Usage: bash scripts/setup.sh   (environment: BUILD_TYPE=Release|Debug, JOBS=n)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-packages=(libdeal.ii-dev g++ make cmake numdiff openmpi-bin)
+packages=(libdeal.ii-dev g++ make cmake numdiff openmpi-bin
+          python3-numpy python3-matplotlib python3-vtk9 xvfb xauth)  # the last five: scripts/postprocess
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
