@@ -24,9 +24,13 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-import edges  # noqa: E402
-from results import (PostprocessError, fail, load_grid, output_file, point_array,  # noqa: E402
-                     read_csv, require, select_steps, to_float, warped)
+from results import (PostprocessError, fail, load_grid, missing_module,  # noqa: E402
+                     output_file, point_array, read_csv, require, select_steps, to_float, warped)
+
+try:
+    import edges  # noqa: E402
+except ImportError as error:
+    fail(missing_module(error, "python3-numpy"))
 
 COLUMNS = ["particle", "contact_partners", "die_contact", "volume", "mean_plastic_strain",
            "max_plastic_strain", "cross_section_edges", "section_z"]
@@ -70,8 +74,9 @@ def table_for_step(directory, step, path, csv_rows, edge_options):
         z, polygon = mid_height_section(mesh)
         n_edges = None if polygon is None else edges.count_straight_edges(polygon, **edge_options)
         info = csv_rows.get((step, particle), {})
-        if "volume" in info:
-            volume = to_float(info["volume"])
+        csv_volume = to_float(info.get("volume"))
+        if not math.isnan(csv_volume):
+            volume = csv_volume
         rows.append([particle, info.get("contact_partners", ""), info.get("die_contact", ""),
                      volume, mean_strain, max_strain, n_edges, z])
     return [[fmt(v) for v in row] for row in rows]

@@ -23,15 +23,19 @@ def fail(message):
     sys.exit(2)
 
 
+def missing_module(exc, debian_package):
+    """The one-line message for a failed import."""
+    return (f"a Python module is missing ({exc}); install the Debian package "
+            f"{debian_package} (bash scripts/setup.sh does) and run the script with "
+            f"/usr/bin/python3 (now: {sys.executable})")
+
+
 def require(module_name, debian_package):
     """Import a module or raise a PostprocessError naming the Debian package."""
     try:
         return __import__(module_name)
     except ImportError as exc:
-        raise PostprocessError(
-            f"Python module '{module_name}' is missing ({exc}); install the Debian "
-            f"package {debian_package} (bash scripts/setup.sh does) and run the "
-            f"script with /usr/bin/python3 (now: {sys.executable})") from exc
+        raise PostprocessError(missing_module(exc, debian_package)) from exc
 
 
 def output_file(directory, name):

@@ -101,7 +101,12 @@ def mid_height_section(particle_mesh):
 
 
 def integrate(particle_mesh, field):
-    """(volume, integral of the point field) over one particle's cells."""
+    """(volume, integral of the point field) over one particle's cells.
+
+    vtkIntegrateAttributes sums signed cell volumes; the signs are flipped
+    when the cells are inverted, assuming one orientation for all cells of a
+    particle (deal.II writes them so).
+    """
     vtk = require("vtk", "python3-vtk9")
     integrator = vtk.vtkIntegrateAttributes()
     integrator.SetInputData(particle_mesh)
@@ -112,4 +117,7 @@ def integrate(particle_mesh, field):
     integral = None
     if field is not None and out.GetPointData().GetArray(field) is not None:
         integral = out.GetPointData().GetArray(field).GetValue(0)
+    if volume < 0:
+        volume = -volume
+        integral = None if integral is None else -integral
     return volume, integral
