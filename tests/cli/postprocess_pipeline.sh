@@ -1,7 +1,9 @@
-# The post-processing scripts on a real (shrunk) run of prm/default.prm:
-# plot_statistics.py, particle_table.py and render.py (off-screen, under
-# xvfb-run when there is no display) write their files, the pictures are
-# PNGs of some size and the table has one row per particle.
+# The post-processing scripts on a real two-step run of prm/default.prm
+# (its own mesh, about 2 s): plot_statistics.py, particle_table.py and
+# render.py (off-screen, under xvfb-run when there is no display) write their
+# files, the pictures are PNGs of some size and the table has one row per
+# particle. Then the run's sphere meshes are flattened onto k vertical planes
+# by a made-up displacement, and the mid-height sections must have k edges.
 # Needs Debian's python3-numpy, python3-matplotlib, python3-vtk9, xvfb and
 # xauth (scripts/setup.sh installs them).
 set -eu
@@ -22,9 +24,6 @@ fi
 rm -rf out plots
 "$DENSIFY" "$SOURCE_DIR/prm/default.prm" \
   --set "Output/Directory=$WORK_DIR/out" \
-  --set "Mesh/Polynomial degree=1" \
-  --set "Mesh/Element size=0.6" \
-  --set "Mesh/Refined element size=0.2" \
   --set "Time stepping/Number of steps=2" > run.txt
 grep "^Finished" run.txt
 
@@ -54,8 +53,52 @@ echo "$rows rows, $particles particles in particles.csv at step 2"
 # every particle has a section with an edge count and a positive volume
 awk -F, 'NR > 1 && ($7 == "" || $4 <= 0) {bad = 1} END {exit bad}' "$table" \
   || { echo "FAIL: a row lacks its edge count or volume" >&2; cat "$table"; exit 1; }
+# the spheres are pressed by 8 um only: their sections are still round
+awk -F, 'NR > 1 && $7 != 0 {bad = 1} END {exit bad}' "$table" \
+  || { echo "FAIL: a barely pressed sphere has a section with straight edges" >&2; cat "$table"; exit 1; }
 "$python" "$scripts/particle_table.py" out > /dev/null
 [ -f out/particle_table_00001.csv ] && [ -f out/particle_table_00002.csv ]
+
+echo "== edges of the run's spheres flattened onto k planes"
+"$python" - "$scripts" out/solution_00002.pvtu <<'EOF'
+import math
+import sys
+import numpy as np
+sys.path.insert(0, sys.argv[1])
+from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+import edges
+import results
+import sections
+
+grid = results.load_grid(sys.argv[2])
+points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+particle_of_point = np.full(len(points), -1)
+cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(grid.GetNumberOfCells(), -1)
+particle_of_point[cells] = vtk_to_numpy(grid.GetCellData().GetArray("particle_id"))[:, None]
+failed = 0
+for k in (3, 4, 5, 6, 7, 8):
+    # move every point inside the k planes at 0.85 R from each particle's axis
+    displacement = np.zeros_like(points)
+    for particle in sections.particle_ids(grid):
+        mine = particle_of_point == particle
+        xy = points[mine, :2]
+        centre = 0.5 * (xy.min(axis=0) + xy.max(axis=0))
+        radius = 0.5 * (xy[:, 0].max() - xy[:, 0].min())
+        moved = xy - centre
+        for j in range(k):
+            normal = np.array([math.cos(2 * math.pi * j / k + 0.2), math.sin(2 * math.pi * j / k + 0.2)])
+            moved -= np.clip(moved @ normal - 0.85 * radius, 0, None)[:, None] * normal
+        displacement[mine, :2] = moved - (xy - centre)
+    array = numpy_to_vtk(displacement, deep=True)
+    array.SetName("displacement")
+    grid.GetPointData().AddArray(array)
+    deformed = results.warped(grid)
+    counts = [edges.count_straight_edges(sections.mid_height_section(
+        sections.extract_particle(deformed, p))[1]) for p in sections.particle_ids(grid)]
+    print(f"{k} planes: edges {counts}")
+    failed += any(c != k for c in counts)
+sys.exit(1 if failed else 0)
+EOF
 
 echo "== render.py"
 "$python" "$scripts/render.py" out --out plots --size 600 450
