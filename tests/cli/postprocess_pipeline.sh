@@ -60,45 +60,7 @@ awk -F, 'NR > 1 && $7 != 0 {bad = 1} END {exit bad}' "$table" \
 [ -f out/particle_table_00001.csv ] && [ -f out/particle_table_00002.csv ]
 
 echo "== edges of the run's spheres flattened onto k planes"
-"$python" - "$scripts" out/solution_00002.pvtu <<'EOF'
-import math
-import sys
-import numpy as np
-sys.path.insert(0, sys.argv[1])
-from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-import edges
-import results
-import sections
-
-grid = results.load_grid(sys.argv[2])
-points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
-particle_of_point = np.full(len(points), -1)
-cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(grid.GetNumberOfCells(), -1)
-particle_of_point[cells] = vtk_to_numpy(grid.GetCellData().GetArray("particle_id"))[:, None]
-failed = 0
-for k in (3, 4, 5, 6, 7, 8):
-    # move every point inside the k planes at 0.85 R from each particle's axis
-    displacement = np.zeros_like(points)
-    for particle in sections.particle_ids(grid):
-        mine = particle_of_point == particle
-        xy = points[mine, :2]
-        centre = 0.5 * (xy.min(axis=0) + xy.max(axis=0))
-        radius = 0.5 * (xy[:, 0].max() - xy[:, 0].min())
-        moved = xy - centre
-        for j in range(k):
-            normal = np.array([math.cos(2 * math.pi * j / k + 0.2), math.sin(2 * math.pi * j / k + 0.2)])
-            moved -= np.clip(moved @ normal - 0.85 * radius, 0, None)[:, None] * normal
-        displacement[mine, :2] = moved - (xy - centre)
-    array = numpy_to_vtk(displacement, deep=True)
-    array.SetName("displacement")
-    grid.GetPointData().AddArray(array)
-    deformed = results.warped(grid)
-    counts = [edges.count_straight_edges(sections.mid_height_section(
-        sections.extract_particle(deformed, p))[1]) for p in sections.particle_ids(grid)]
-    print(f"{k} planes: edges {counts}")
-    failed += any(c != k for c in counts)
-sys.exit(1 if failed else 0)
-EOF
+"$python" "$scripts/flatten_check.py" out --step 2
 
 echo "== render.py"
 "$python" "$scripts/render.py" out --out plots --size 600 450
