@@ -22,8 +22,8 @@ With the defaults a circle has no edge (the simplification turns it into a
 polygon of chords 6.4 % of the perimeter long that turn by 23 degrees, so no
 run reaches 8 %), a regular polygon with up to 12 sides (8.3 % each) has all
 its edges, and rounded corners do not add edges. Facets of a coarse mesh
-count as edges when a single facet is longer than 8 % of the perimeter,
-i.e. when the section has fewer than about 13 segments. The defaults were
+can count as edges when single facets come close to 8 % of the perimeter.
+The defaults were
 chosen by a sweep over synthetic shapes described in doc/postprocessing.md.
 """
 
