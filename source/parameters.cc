@@ -143,6 +143,11 @@ namespace densify
                         tools.lower_position,
                         "Height of the lower punch face, in mm. It does not "
                         "move.");
+      prm.add_parameter("Friction coefficient",
+                        tools.lower_friction,
+                        "Coulomb coefficient between the particles and the "
+                        "lower punch (>= 0), or 'default' for "
+                        "Contact/Friction coefficient.");
       prm.leave_subsection();
 
       prm.enter_subsection("Upper punch");
@@ -161,6 +166,17 @@ namespace densify
         "Downward displacement of the upper punch against time, as "
         "'t:d, t:d, ...' pairs (s:mm), linearly interpolated and constant "
         "beyond the last time. Positive values compress.");
+      prm.add_parameter(
+        "Lateral displacement history",
+        tools.upper_lateral_displacement,
+        "Sideways (x) displacement of the upper punch against time, as "
+        "'t:d, ...' pairs (s:mm); it drags the particles through friction "
+        "(e.g. a sliding test).");
+      prm.add_parameter("Friction coefficient",
+                        tools.upper_friction,
+                        "Coulomb coefficient between the particles and the "
+                        "upper punch (>= 0), or 'default' for "
+                        "Contact/Friction coefficient.");
       prm.leave_subsection();
 
       prm.enter_subsection("Die wall");
@@ -172,6 +188,11 @@ namespace densify
                         tools.die_diameter,
                         "Inner diameter of the die, in mm (> 0).",
                         Patterns::Double(1e-6));
+      prm.add_parameter("Friction coefficient",
+                        tools.die_friction,
+                        "Coulomb coefficient between the particles and the "
+                        "die wall (>= 0), or 'default' for "
+                        "Contact/Friction coefficient.");
       prm.leave_subsection();
     }
     prm.leave_subsection();
@@ -189,13 +210,40 @@ namespace densify
       prm.add_parameter(
         "Gap tolerance",
         contact.gap_tolerance,
-        "Largest penetration of a particle into a tool accepted at the end of "
-        "a step, in mm (> 0); multipliers are updated until it is met.",
+        "Largest penetration of a particle into a tool or another particle "
+        "accepted at the end of a step, in mm (> 0); multipliers are updated "
+        "until it is met.",
         Patterns::Double(1e-15));
       prm.add_parameter("Maximum augmentations",
                         contact.max_augmentations,
                         "Maximum number of multiplier updates per load step.",
                         Patterns::Integer(0, 1000));
+      prm.add_parameter(
+        "Friction coefficient",
+        contact.friction_coefficient,
+        "Coulomb friction coefficient mu between particles, and of every tool "
+        "whose own Friction coefficient is 'default' (>= 0). 0 switches "
+        "friction off and costs nothing.",
+        Patterns::Double(0.));
+      prm.add_parameter(
+        "Friction model",
+        contact.friction_model,
+        "'Coulomb': stick below mu p, slip at mu p (return map, penalty "
+        "stick stiffness); 'arctangent': the paper's regularised law "
+        "t = mu p (2/pi) atan(v/v0) against the sliding velocity v.",
+        Patterns::Selection("Coulomb|arctangent"));
+      prm.add_parameter("Slip velocity",
+                        contact.slip_velocity,
+                        "v0 of the arctangent law, in mm/s (> 0): below it "
+                        "the traction grows linearly with the velocity.",
+                        Patterns::Double(1e-300));
+      prm.add_parameter(
+        "Friction tangent",
+        contact.friction_tangent,
+        "'symmetric': the slip tangent without its nonsymmetric coupling to "
+        "the pressure (CG works); 'consistent': with it (quadratic Newton "
+        "near slip, needs Solver/Linear solver = gmres-amg or direct).",
+        Patterns::Selection("symmetric|consistent"));
     }
     prm.leave_subsection();
 
@@ -228,9 +276,10 @@ namespace densify
         "Linear solver",
         solver.linear_solver,
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
-        "the six rigid-body modes (scales to large problems); direct: "
-        "Amesos KLU (small problems only).",
-        Patterns::Selection("cg-amg|direct"));
+        "the six rigid-body modes (scales to large problems); gmres-amg: "
+        "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
+        "tangent = consistent); direct: Amesos KLU (small problems only).",
+        Patterns::Selection("cg-amg|gmres-amg|direct"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,
                         "CG stops when the residual falls below this times "

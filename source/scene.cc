@@ -78,6 +78,41 @@ namespace densify
     scene.punch_table = parse_table(prm.tools.upper_displacement,
                                     "Tools/Upper punch/Displacement history");
 
+    scene.lateral_table =
+      parse_table(prm.tools.upper_lateral_displacement,
+                  "Tools/Upper punch/Lateral displacement history");
+    const std::array<std::pair<std::string, std::string>, n_tool_kinds>
+      friction = {{{"Lower punch", prm.tools.lower_friction},
+                   {"Upper punch", prm.tools.upper_friction},
+                   {"Die wall", prm.tools.die_friction}}};
+    for (unsigned int t = 0; t < n_tool_kinds; ++t)
+      {
+        const std::string &text = friction[t].second;
+        double             mu   = prm.contact.friction_coefficient;
+        if (text != "default")
+          {
+            try
+              {
+                mu = Utilities::string_to_double(text);
+              }
+            catch (...)
+              {
+                mu = -1;
+              }
+            if (!(mu >= 0))
+              throw std::runtime_error(
+                "Tools/" + friction[t].first + "/Friction coefficient: '" +
+                text + "' is neither a number >= 0 nor 'default'");
+          }
+        scene.tool_friction[t] = mu;
+      }
+    if (prm.contact.friction_tangent == "consistent" &&
+        prm.solver.linear_solver == "cg-amg")
+      throw std::runtime_error(
+        "Contact/Friction tangent = consistent gives a nonsymmetric tangent "
+        "that CG cannot solve: set Solver/Linear solver = gmres-amg (or "
+        "direct)");
+
     Container container;
     container.has_die    = prm.tools.die_enabled;
     container.die_radius = prm.tools.die_diameter / 2;

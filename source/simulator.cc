@@ -160,6 +160,8 @@ namespace densify
     particles     = std::move(scene.particles);
     upper_initial = scene.upper_initial;
     punch_table   = std::move(scene.punch_table);
+    lateral_table = std::move(scene.lateral_table);
+    tool_friction = scene.tool_friction;
     for (const Particle &p : particles)
       particle_material.push_back(create_material(p.material, prm.material));
   }
@@ -198,18 +200,18 @@ namespace densify
     locally_owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
-    TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
-    DoFTools::make_sparsity_pattern(
-      dof_handler, sp, AffineConstraints<double>(), false, this_rank);
-    sp.compress();
-    tangent.reinit(sp);
-    stabilisation.reinit(sp);
+    // masters of particle contact may lie on any rank's cells
+    has_particle_contact = particles.size() > 1;
+    ghosted_dofs         = has_particle_contact ?
+                             complete_index_set(dof_handler.n_dofs()) :
+                             locally_relevant;
 
     solution.reinit(locally_owned, comm);
     increment.reinit(locally_owned, comm);
     residual.reinit(locally_owned, comm);
     last_increment.reinit(locally_owned, comm);
-    solution_ghosted.reinit(locally_owned, locally_relevant, comm);
+    solution_ghosted.reinit(locally_owned, ghosted_dofs, comm);
+    committed_ghosted.reinit(locally_owned, ghosted_dofs, comm);
 
     // enabled tools and per-particle penalties
     std::vector<RigidTool> tools;
@@ -223,7 +225,35 @@ namespace densify
     for (const auto &m : particle_material)
       penalty.push_back(prm.contact.penalty_factor * m->youngs_modulus() /
                         h_min);
-    tool_contact.setup(dof_handler, tools, penalty, prm.mesh.degree + 1);
+    FrictionLaw friction;
+    friction.mu = prm.contact.friction_coefficient;
+    friction.model =
+      (prm.contact.friction_model == "arctangent" ? FrictionModel::arctangent :
+                                                    FrictionModel::coulomb);
+    friction.consistent = (prm.contact.friction_tangent == "consistent");
+    std::vector<FrictionLaw> tool_laws;
+    for (const RigidTool &tool : tools)
+      {
+        tool_laws.push_back(friction);
+        tool_laws.back().mu = tool_friction[static_cast<unsigned>(tool.kind)];
+      }
+    tool_contact.setup(
+      dof_handler, tools, tool_laws, penalty, prm.mesh.degree + 1);
+    tool_contact.set_committed_solution(committed_ghosted);
+    if (has_particle_contact)
+      {
+        // candidates within an element of the smallest size: more than a
+        // Newton iteration can move (the step limiter allows h/2)
+        search_margin = h_min;
+        particle_contact.setup(dof_handler,
+                               penalty,
+                               friction,
+                               prm.mesh.degree + 1);
+        particle_contact.set_committed_solution(committed_ghosted);
+        update_ghosts();
+        particle_contact.update_search(solution_ghosted, search_margin);
+      }
+    setup_matrix();
 
     // quadrature-point history only where a material needs it
     has_history = false;
@@ -246,7 +276,25 @@ namespace densify
                                      prm.solver.reuse_amg,
                                      timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
+  }
+
+
+
+  void
+  Simulator::setup_matrix()
+  {
+    TimerOutput::Scope                t(timer, "Setup: matrix");
+    TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
+    DoFTools::make_sparsity_pattern(
+      dof_handler, sp, AffineConstraints<double>(), false, this_rank);
+    if (has_particle_contact)
+      particle_contact.add_couplings(sp);
+    sp.compress();
+    tangent.reinit(sp);
+    stabilisation.reinit(sp);
     setup_stabilisation();
+    if (linear_solver)
+      linear_solver->rebuild_preconditioner();
   }
 
 
@@ -310,6 +358,14 @@ namespace densify
                          with_matrix ? "Assembly: tangent+residual" :
                                        "Assembly: residual");
     update_ghosts();
+    if (with_matrix && has_particle_contact)
+      {
+        // refresh the particle contact search; new couplings need a new
+        // matrix pattern
+        TimerOutput::Scope ts(timer, "Contact: search");
+        if (!particle_contact.update_search(solution_ghosted, search_margin))
+          setup_matrix();
+      }
     residual = 0;
     if (with_matrix)
       tangent = 0;
@@ -408,6 +464,16 @@ namespace densify
                                              with_matrix ? &tangent : nullptr,
                                              tangent_margin);
     }
+    if (has_particle_contact)
+      {
+        TimerOutput::Scope tc(timer, "Assembly: particle contact");
+        result.particle_contact =
+          particle_contact.assemble(*mapping,
+                                    solution_ghosted,
+                                    residual,
+                                    with_matrix ? &tangent : nullptr,
+                                    tangent_margin);
+      }
     residual.compress(VectorOperation::add);
     if (with_matrix)
       {
@@ -419,6 +485,7 @@ namespace densify
     double contact_total = 0;
     for (const double f : result.contact.normal_force)
       contact_total += f;
+    contact_total += result.particle_contact.normal_force;
     result.reference_norm = std::max(internal_norm, contact_total);
     return result;
   }
@@ -440,13 +507,19 @@ namespace densify
 
     unsigned int   linear_iterations = 0;
     AssemblyResult current           = assemble(true, margin);
+    double         line_search_step  = 1.;
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
         const double target = std::max(tol * current.reference_norm, floor);
         if (prm.output.verbose)
           pcout << "    newton " << it << ": |R| = " << std::scientific
                 << std::setprecision(3) << current.residual_norm << " (target "
-                << target << ")" << std::defaultfloat << std::endl;
+                << target << "), contact points "
+                << current.contact.n_active + current.particle_contact.n_active
+                << " (slip "
+                << current.contact.n_slip + current.particle_contact.n_slip
+                << "), line search " << std::defaultfloat << line_search_step
+                << std::endl;
         if (current.residual_norm <= target)
           return {it, linear_iterations};
         if (it == prm.solver.max_newton_iterations)
@@ -502,7 +575,8 @@ namespace densify
             ": the residual became NaN or infinite; try more steps "
             "(Time stepping/Number of steps) or a smaller Contact/Penalty "
             "factor");
-        current = have_matrix ? trial : assemble(true);
+        current          = have_matrix ? trial : assemble(true);
+        line_search_step = s;
       }
     std::ostringstream msg;
     msg << "step " << step << ": Newton did not converge in "
@@ -619,13 +693,22 @@ namespace densify
 
 
 
-  ToolContactResult
+  Simulator::ContactResults
   Simulator::solve_increment(const double       time,
                              const unsigned int step,
                              StepStatistics    &s)
   {
     const double upper = upper_punch_position(time);
     tool_contact.set_tool_position(ToolKind::upper_punch, upper);
+    tool_contact.set_tool_translation(
+      ToolKind::upper_punch,
+      Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
+    // the arctangent law's slip scale: the threshold velocity times the
+    // increment's duration
+    const double regularisation =
+      prm.contact.slip_velocity * (time - current_time);
+    tool_contact.set_friction_regularisation(regularisation);
+    particle_contact.set_friction_regularisation(regularisation);
     const double punch_increment = std::abs(upper - current_upper);
     // predictor: extrapolate the last increment in proportion to the punch
     // travel
@@ -633,7 +716,7 @@ namespace densify
     if (last_punch_increment > 0)
       solution.add(punch_increment / last_punch_increment, last_increment);
 
-    ToolContactResult contact;
+    ContactResults contact;
     for (unsigned int aug = 0;; ++aug)
       {
         // predictor margin: contacts within this increment's punch travel
@@ -643,16 +726,26 @@ namespace densify
         s.linear_iterations += linear;
         {
           TimerOutput::Scope t(timer, "Contact: multipliers");
-          contact = tool_contact.evaluate(*mapping, solution_ghosted);
-          if (contact.max_penetration <= prm.contact.gap_tolerance ||
+          contact.tools = tool_contact.evaluate(*mapping, solution_ghosted);
+          if (has_particle_contact)
+            contact.particles =
+              particle_contact.evaluate(*mapping, solution_ghosted);
+          const double penetration =
+            std::max(contact.tools.max_penetration,
+                     contact.particles.max_penetration);
+          if (penetration <= prm.contact.gap_tolerance ||
               aug == prm.contact.max_augmentations)
             break;
           tool_contact.update_multipliers(*mapping, solution_ghosted);
+          if (has_particle_contact)
+            particle_contact.update_multipliers(*mapping, solution_ghosted);
         }
         ++s.augmentations;
       }
-    if (contact.max_penetration > prm.contact.gap_tolerance)
-      pcout << "  warning: penetration " << contact.max_penetration
+    const double penetration = std::max(contact.tools.max_penetration,
+                                        contact.particles.max_penetration);
+    if (penetration > prm.contact.gap_tolerance)
+      pcout << "  warning: penetration " << penetration
             << " mm above Contact/Gap tolerance after "
             << prm.contact.max_augmentations
             << " augmentations; raise Contact/Maximum augmentations or "
@@ -669,25 +762,26 @@ namespace densify
 
 
 
-  ToolContactResult
+  Simulator::ContactResults
   Simulator::advance_to(const double       time,
                         const unsigned int step,
                         StepStatistics    &s)
   {
-    const double      step_length = prm.time.end_time / prm.time.n_steps;
-    double            dt = std::min(next_increment, time - current_time);
-    unsigned int      cutbacks_in_a_row = 0;
-    ToolContactResult contact;
+    const double   step_length = prm.time.end_time / prm.time.n_steps;
+    double         dt          = std::min(next_increment, time - current_time);
+    unsigned int   cutbacks_in_a_row = 0;
+    ContactResults contact;
     while (current_time < time - 1e-12 * step_length)
       {
         dt = std::min(dt, time - current_time);
         // what a failed increment must restore
         const TrilinosWrappers::MPI::Vector saved_solution  = solution;
         const TrilinosWrappers::MPI::Vector saved_increment = last_increment;
-        const std::vector<double> saved_lambda  = tool_contact.multipliers();
-        const double              saved_punch   = last_punch_increment;
-        const double              saved_upper   = current_upper;
-        const unsigned int        newton_before = s.newton_iterations;
+        const ToolContact::State            saved_tools = tool_contact.state();
+        const ParticleContact::State saved_particles = particle_contact.state();
+        const double                 saved_punch     = last_punch_increment;
+        const double                 saved_upper     = current_upper;
+        const unsigned int           newton_before   = s.newton_iterations;
         try
           {
             contact = solve_increment(current_time + dt, step, s);
@@ -696,7 +790,8 @@ namespace densify
           {
             solution       = saved_solution;
             last_increment = saved_increment;
-            tool_contact.set_multipliers(saved_lambda);
+            tool_contact.set_state(saved_tools);
+            particle_contact.set_state(saved_particles);
             last_punch_increment = saved_punch;
             current_upper        = saved_upper;
             update_ghosts();
@@ -715,9 +810,14 @@ namespace densify
                   << one_line(e.what()) << ")" << std::endl;
             continue;
           }
-        // accepted: commit the history
+        // accepted: commit the history of the material and of friction
         if (has_history)
           committed_history = trial_history;
+        update_ghosts();
+        tool_contact.commit(*mapping, solution_ghosted);
+        if (has_particle_contact)
+          particle_contact.commit(*mapping, solution_ghosted);
+        committed_ghosted = solution;
         current_time += dt;
         ++s.increments;
         cutbacks_in_a_row = 0;
@@ -747,8 +847,11 @@ namespace densify
     TrilinosWrappers::MPI::Vector pr_w(post_owned, comm),
       ep_w(post_owned, comm);
     TrilinosWrappers::MPI::Vector vm_w(post_owned, comm),
-      vm_m(post_owned, comm), p_w(post_owned, comm), p_m(post_owned, comm),
-      gap(post_owned, comm);
+      vm_m(post_owned, comm), gap(post_owned, comm);
+    SurfaceFieldSums surface;
+    for (auto *v :
+         {&surface.pressure, &surface.slip, &surface.status, &surface.weights})
+      v->reinit(post_owned, comm);
 
     const QGaussSimplex<3>               quadrature(prm.mesh.degree + 1);
     FEValues<3>                          fe_values(*mapping,
@@ -829,32 +932,53 @@ namespace densify
               gap(i) = (tool_contact.tools().empty() ? 0. : g);
             }
         }
-    tool_contact.project_pressure(
-      *mapping, solution_ghosted, post_dof_handler, p_w, p_m);
-    for (auto *v : {&vm_w, &vm_m, &p_w, &p_m, &pr_w, &ep_w})
+    tool_contact.project_fields(*mapping,
+                                solution_ghosted,
+                                post_dof_handler,
+                                surface);
+    if (has_particle_contact)
+      particle_contact.project_fields(*mapping,
+                                      solution_ghosted,
+                                      post_dof_handler,
+                                      surface);
+    for (auto *v : {&vm_w,
+                    &vm_m,
+                    &surface.pressure,
+                    &surface.slip,
+                    &surface.status,
+                    &surface.weights,
+                    &pr_w,
+                    &ep_w})
       v->compress(VectorOperation::add);
     gap.compress(VectorOperation::insert);
     for (const auto i : post_owned)
       {
-        pr_w(i) = (vm_m(i) > 0 ? pr_w(i) / vm_m(i) : 0.);
-        ep_w(i) = (vm_m(i) > 0 ? ep_w(i) / vm_m(i) : 0.);
-        vm_w(i) = (vm_m(i) > 0 ? vm_w(i) / vm_m(i) : 0.);
-        p_w(i)  = (p_m(i) > 0 ? p_w(i) / p_m(i) : 0.);
+        pr_w(i)        = (vm_m(i) > 0 ? pr_w(i) / vm_m(i) : 0.);
+        ep_w(i)        = (vm_m(i) > 0 ? ep_w(i) / vm_m(i) : 0.);
+        vm_w(i)        = (vm_m(i) > 0 ? vm_w(i) / vm_m(i) : 0.);
+        const double w = surface.weights(i);
+        for (auto *v : {&surface.pressure, &surface.slip, &surface.status})
+          (*v)(i) = (w > 0 ? (*v)(i) / w : 0.);
       }
     vm_w.compress(VectorOperation::insert);
-    p_w.compress(VectorOperation::insert);
+    for (auto *v : {&surface.pressure, &surface.slip, &surface.status})
+      v->compress(VectorOperation::insert);
     pr_w.compress(VectorOperation::insert);
     ep_w.compress(VectorOperation::insert);
     TrilinosWrappers::MPI::Vector vm_g(post_owned, post_relevant, comm),
       p_g(post_owned, post_relevant, comm),
       gap_g(post_owned, post_relevant, comm),
       pr_g(post_owned, post_relevant, comm),
-      ep_g(post_owned, post_relevant, comm);
-    vm_g  = vm_w;
-    p_g   = p_w;
-    gap_g = gap;
-    pr_g  = pr_w;
-    ep_g  = ep_w;
+      ep_g(post_owned, post_relevant, comm),
+      slip_g(post_owned, post_relevant, comm),
+      status_g(post_owned, post_relevant, comm);
+    vm_g     = vm_w;
+    p_g      = surface.pressure;
+    slip_g   = surface.slip;
+    status_g = surface.status;
+    gap_g    = gap;
+    pr_g     = pr_w;
+    ep_g     = ep_w;
 
     Vector<float> particle_id(triangulation.n_active_cells()),
       rank(triangulation.n_active_cells());
@@ -876,6 +1000,14 @@ namespace densify
     data_out.add_data_vector(post_dof_handler, p_g, "contact_pressure");
     data_out.add_data_vector(post_dof_handler, gap_g, "gap");
     data_out.add_data_vector(post_dof_handler, pr_g, "pressure");
+    const bool friction_on =
+      tool_contact.has_friction() ||
+      (has_particle_contact && prm.contact.friction_coefficient > 0);
+    if (friction_on)
+      {
+        data_out.add_data_vector(post_dof_handler, slip_g, "slip");
+        data_out.add_data_vector(post_dof_handler, status_g, "stick_slip");
+      }
     if (has_history)
       data_out.add_data_vector(post_dof_handler, ep_g, "plastic_strain");
     data_out.add_data_vector(particle_id, "particle_id");
@@ -931,33 +1063,26 @@ namespace densify
       pcout << "Active effects: ";
       for (unsigned int i = 0; i < laws.size(); ++i)
         pcout << (i > 0 ? ", " : "") << laws[i];
+      auto friction_text = [&](const double mu) {
+        std::ostringstream text;
+        if (mu > 0)
+          text << "friction " << mu << " "
+               << (prm.contact.friction_model == "arctangent" ? "arctangent" :
+                                                                "Coulomb");
+        else
+          text << "frictionless";
+        return text.str();
+      };
       for (const RigidTool &tool : tool_contact.tools())
-        pcout << ", " << tool_name(tool.kind) << " contact (frictionless)";
+        pcout << ", " << tool_name(tool.kind) << " contact ("
+              << friction_text(tool_friction[static_cast<unsigned>(tool.kind)])
+              << ")";
+      if (has_particle_contact)
+        pcout << ", particle-particle contact ("
+              << friction_text(prm.contact.friction_coefficient) << ")";
       if (has_history)
         pcout << ", plastic history";
       pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
-    }
-
-    // particle-particle contact is not implemented yet: say so when
-    // particles touch, instead of letting them pass through each other
-    {
-      double d_min = std::numeric_limits<double>::max();
-      for (const Particle &p : particles)
-        d_min = std::min(d_min, p.diameter);
-      const double margin   = 0.01 * d_min;
-      unsigned int touching = 0;
-      for (const auto &[i, j] :
-           find_candidate_pairs(bounding_boxes(particles), margin))
-        if (particles[i].centre.distance(particles[j].centre) <=
-            (particles[i].diameter + particles[j].diameter) / 2 + margin)
-          ++touching;
-      if (touching > 0)
-        pcout << "warning: " << touching
-              << " pair(s) of particles touch or nearly touch, but "
-                 "particle-particle contact is not implemented yet: they "
-                 "can pass through each other (results for them are not "
-                 "physical)"
-              << std::endl;
     }
 
     const double die_area =
@@ -988,10 +1113,10 @@ namespace densify
     if (this_rank == 0)
       {
         particle_file.open(prm.output.directory + "/particles.csv");
-        particle_file
-          << "step,particle,material,volume,initial_volume,"
-             "mean_displacement_x,mean_displacement_y,"
-             "mean_displacement_z,rotation_x,rotation_y,rotation_z\n";
+        particle_file << "step,particle,material,volume,initial_volume,"
+                         "mean_displacement_x,mean_displacement_y,"
+                         "mean_displacement_z,rotation_x,rotation_y,rotation_z,"
+                         "contact_partners,die_contact\n";
       }
 
     const unsigned int n_steps = prm.time.n_steps;
@@ -1001,11 +1126,12 @@ namespace densify
         const double   time  = prm.time.end_time * step / n_steps;
         const double   upper = upper_punch_position(time);
         StepStatistics s;
-        s.step                          = step;
-        s.time                          = time;
-        s.punch_displacement            = upper_initial - upper;
-        last_stabilisation_force        = 0;
-        const ToolContactResult contact = advance_to(time, step, s);
+        s.step                           = step;
+        s.time                           = time;
+        s.punch_displacement             = upper_initial - upper;
+        last_stabilisation_force         = 0;
+        const ContactResults     results = advance_to(time, step, s);
+        const ToolContactResult &contact = results.tools;
 
         const auto upper_kind =
           static_cast<unsigned int>(ToolKind::upper_punch);
@@ -1017,7 +1143,22 @@ namespace densify
         s.die_wall_force        = contact.axial_force[die_kind];
         s.die_wall_radial_force = contact.normal_force[die_kind];
         s.stabilisation_force   = last_stabilisation_force;
-        s.max_penetration       = contact.max_penetration;
+        s.max_penetration =
+          std::max(contact.max_penetration, results.particles.max_penetration);
+        s.particle_contact_force = results.particles.normal_force;
+        s.slipping_points        = contact.n_slip + results.particles.n_slip;
+        update_ghosts();
+        const std::vector<unsigned int> partners =
+          has_particle_contact ?
+            particle_contact.contact_partners(*mapping, solution_ghosted) :
+            std::vector<unsigned int>(particles.size(), 0);
+        for (const unsigned int n : partners)
+          s.contact_pairs += n;
+        s.contact_pairs /= 2;
+        const std::vector<unsigned int> die_contact =
+          tool_contact.particles_touching(*mapping,
+                                          solution_ghosted,
+                                          ToolKind::die_wall);
         const std::vector<ParticleMeasure> measures = measure_particles();
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
@@ -1032,7 +1173,8 @@ namespace densify
                 << ',' << measures[p].mean_displacement[1] << ','
                 << measures[p].mean_displacement[2] << ','
                 << measures[p].rotation[0] << ',' << measures[p].rotation[1]
-                << ',' << measures[p].rotation[2] << '\n';
+                << ',' << measures[p].rotation[2] << ',' << partners[p] << ','
+                << die_contact[p] << '\n';
             particle_file.flush();
           }
         s.relative_density = density(s.particle_volume, upper);

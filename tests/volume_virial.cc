@@ -27,7 +27,9 @@ main(int argc, char **argv)
                       "default.prm",
                       {"Output/Directory=output",
                        "Output/Interval=0",
-                       "Time stepping/Number of steps=2"});
+                       "Time stepping/Number of steps=2",
+                       // the identity below is for frictionless punches
+                       "Contact/Friction coefficient=0"});
   Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.setup();
   double V0 = 0;

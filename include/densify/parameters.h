@@ -82,6 +82,13 @@ namespace densify
     bool die_enabled = false;
     /// Inner die diameter (mm).
     double die_diameter = 20.;
+    /// Sideways (x) displacement history of the upper punch "t:d, ..."
+    /// (s:mm).
+    std::string upper_lateral_displacement = "0:0";
+    /// Friction coefficient of each tool: a number, or "default" for
+    /// Contact/Friction coefficient.
+    std::string lower_friction = "default", upper_friction = "default",
+                die_friction = "default";
   };
 
   /// Subsection "Contact": augmented-Lagrangian normal contact.
@@ -93,6 +100,16 @@ namespace densify
     double gap_tolerance = 1e-4;
     /// Maximum multiplier updates per step.
     unsigned int max_augmentations = 20;
+    /// Coulomb friction coefficient between particles (and of the tools by
+    /// default).
+    double friction_coefficient = 0.2;
+    /// "Coulomb" (stick/slip return map) or "arctangent" (the paper's).
+    std::string friction_model = "Coulomb";
+    /// Sliding velocity below which the arctangent law is nearly stuck
+    /// (mm/s).
+    double slip_velocity = 0.01;
+    /// "symmetric" (CG) or "consistent" (needs GMRES or a direct solver).
+    std::string friction_tangent = "symmetric";
   };
 
   /// Subsection "Time stepping": load steps.
@@ -109,7 +126,7 @@ namespace densify
   /// Subsection "Solver": Newton, linear solver and stabilisation.
   struct SolverParameters
   {
-    /// "cg-amg" or "direct".
+    /// "cg-amg", "gmres-amg" or "direct".
     std::string linear_solver = "cg-amg";
     /// Relative tolerance of the linear solver.
     double linear_tolerance = 1e-8;

@@ -2,9 +2,11 @@
 // load history.
 #pragma once
 
+#include <densify/contact/rigid_tools.h>
 #include <densify/geometry/particles.h>
 #include <densify/parameters.h>
 
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -19,6 +21,10 @@ namespace densify
     double upper_initial = 0.;
     /// Downward punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> punch_table;
+    /// Sideways (x) upper punch displacement against time (s, mm).
+    std::vector<std::pair<double, double>> lateral_table;
+    /// Friction coefficient of each tool, by ToolKind.
+    std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
   };
 
   /**

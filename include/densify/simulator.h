@@ -16,6 +16,7 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <densify/contact/particle_contact.h>
 #include <densify/contact/tool_contact.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/material.h>
@@ -23,6 +24,7 @@
 #include <densify/postprocess/statistics.h>
 #include <densify/solvers/linear_solver.h>
 
+#include <array>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -118,10 +120,18 @@ namespace densify
     std::vector<ParticleMeasure>
     measure_particles() const;
 
+    /// Contact forces of the tools and between particles.
+    struct ContactResults
+    {
+      ToolContactResult     tools;
+      ParticleContactResult particles;
+    };
+
     /// Result of assemble().
     struct AssemblyResult
     {
-      ToolContactResult contact;
+      ToolContactResult     contact;
+      ParticleContactResult particle_contact;
       /// l2 norm of the out-of-balance force (N).
       double residual_norm = 0.;
       /// Scale for the relative Newton criterion (N).
@@ -136,6 +146,10 @@ namespace densify
     setup_system();
     void
     setup_stabilisation();
+    /// (Re)build the sparsity pattern (cells plus the particle contact
+    /// couplings), the tangent and the stabilisation matrix.
+    void
+    setup_matrix();
 
     /// Residual (and tangent if @p with_matrix) at the current solution;
     /// @p tangent_margin as in ToolContact::assemble().
@@ -153,7 +167,7 @@ namespace densify
      * multiplier updates. Throws std::runtime_error on failure (the caller
      * restores the state).
      */
-    ToolContactResult
+    ContactResults
     solve_increment(const double       time,
                     const unsigned int step,
                     StepStatistics    &s);
@@ -165,7 +179,7 @@ namespace densify
      * cut-backs times in a row), and increments grow again after easy ones.
      * Commits the quadrature-point history of each accepted increment.
      */
-    ToolContactResult
+    ContactResults
     advance_to(const double time, const unsigned int step, StepStatistics &s);
 
     /// Position of the upper punch face at time @p t (mm).
@@ -199,10 +213,16 @@ namespace densify
     std::unique_ptr<MappingFE<3>>      mapping;
     DoFHandler<3>                      dof_handler;
     IndexSet                           locally_owned, locally_relevant;
+    /// The ghost entries of solution_ghosted: every DoF when particles can
+    /// touch (masters may lie anywhere), else the locally relevant ones.
+    IndexSet ghosted_dofs;
 
     TrilinosWrappers::SparseMatrix tangent, stabilisation;
     TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual,
       increment;
+    /// The solution of the last accepted increment, with ghost entries
+    /// (friction measures slip from it).
+    TrilinosWrappers::MPI::Vector committed_ghosted;
 
     /// Quadrature-point history (index: active cell index * n_q + q),
     /// allocated only if some material needs it.
@@ -218,9 +238,18 @@ namespace densify
     TrilinosWrappers::MPI::Vector last_increment;
     double                        last_punch_increment = 0.;
 
-    ToolContact                   tool_contact;
-    std::unique_ptr<LinearSolver> linear_solver;
-    double                        last_stabilisation_force = 0.;
+    ToolContact tool_contact;
+    /// Particle-particle contact, if there is more than one particle.
+    bool            has_particle_contact = false;
+    ParticleContact particle_contact;
+    /// Search margin of the particle contact (mm).
+    double search_margin = 0.;
+    /// Sideways upper punch displacement against time.
+    std::vector<std::pair<double, double>> lateral_table;
+    /// Friction coefficient of each tool, by ToolKind.
+    std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
+    std::unique_ptr<LinearSolver>    linear_solver;
+    double                           last_stabilisation_force = 0.;
 
     std::vector<StepStatistics>       step_statistics;
     std::unique_ptr<StatisticsWriter> statistics_writer;

@@ -1,10 +1,9 @@
-// Augmented-Lagrangian normal contact between particle surfaces and the rigid
-// tools.
+// Augmented-Lagrangian contact with Coulomb friction between particle
+// surfaces and the rigid tools.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/vector.h>
 
 #include <deal.II/fe/fe_values.h>
 
@@ -13,15 +12,35 @@
 namespace densify
 {
   void
-  ToolContact::setup(const DoFHandler<3>          &dof_handler,
-                     const std::vector<RigidTool> &tools,
-                     const std::vector<double>    &penalty_per_particle,
-                     const unsigned int            quadrature_points_1d)
+  add_surface_field_values(const std::vector<types::global_dof_index> &dofs,
+                           const Vector<double>                       &p,
+                           const Vector<double>                       &slip,
+                           const Vector<double>                       &status,
+                           const Vector<double>                       &weights,
+                           SurfaceFieldSums                           &sums)
+  {
+    sums.pressure.add(dofs, p);
+    sums.slip.add(dofs, slip);
+    sums.status.add(dofs, status);
+    sums.weights.add(dofs, weights);
+  }
+
+
+
+  void
+  ToolContact::setup(const DoFHandler<3>            &dof_handler,
+                     const std::vector<RigidTool>   &tools,
+                     const std::vector<FrictionLaw> &friction,
+                     const std::vector<double>      &penalty_per_particle,
+                     const unsigned int              quadrature_points_1d)
   {
     this->dof_handler = &dof_handler;
     tool_list         = tools;
+    friction_laws     = friction;
     penalty           = penalty_per_particle;
     face_quadrature   = QGaussSimplex<2>(quadrature_points_1d);
+    shift.assign(tools.size(), Tensor<1, 3>());
+    committed_shift = shift;
     faces.clear();
     if (!tool_list.empty())
       for (const auto &cell : dof_handler.active_cell_iterators())
@@ -29,7 +48,15 @@ namespace densify
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary())
               faces.emplace_back(cell, f);
-    lambda.assign(faces.size() * face_quadrature.size() * tool_list.size(), 0.);
+    const std::size_t n_points =
+      faces.size() * face_quadrature.size() * tool_list.size();
+    lambda.assign(n_points, 0.);
+    // friction history only if some tool has friction
+    bool friction_on = false;
+    for (const FrictionLaw &law : friction_laws)
+      friction_on = friction_on || law.mu > 0;
+    committed_traction.assign(friction_on ? n_points : 0, Tensor<1, 3>());
+    accumulated_slip.assign(friction_on ? n_points : 0, 0.);
   }
 
 
@@ -44,21 +71,29 @@ namespace densify
 
 
 
+  void
+  ToolContact::set_tool_translation(const ToolKind      kind,
+                                    const Tensor<1, 3> &translation)
+  {
+    for (unsigned int t = 0; t < tool_list.size(); ++t)
+      if (tool_list[t].kind == kind)
+        shift[t] = translation;
+  }
+
+
+
   ToolContactResult
   ToolContact::loop(const Mapping<3>                    &mapping,
                     const TrilinosWrappers::MPI::Vector &solution,
-                    TrilinosWrappers::MPI::Vector       *residual,
-                    TrilinosWrappers::SparseMatrix      *matrix,
-                    const double                         tangent_margin,
-                    std::vector<double>                 *new_lambda,
-                    const DoFHandler<3>                 *post_dof_handler,
-                    TrilinosWrappers::MPI::Vector       *weighted,
-                    TrilinosWrappers::MPI::Vector       *weights) const
+                    const Outputs                       &out) const
   {
     ToolContactResult result;
     if (faces.empty() && tool_list.empty())
       return result;
 
+    const bool friction_on = has_friction();
+    Assert(!friction_on || committed_solution != nullptr,
+           ExcMessage("friction needs set_committed_solution()"));
     const FiniteElement<3>          &fe      = dof_handler->get_fe();
     const unsigned int               n_q     = face_quadrature.size();
     const unsigned int               n_dofs  = fe.n_dofs_per_cell();
@@ -69,28 +104,30 @@ namespace densify
                             update_values | update_quadrature_points |
                               update_JxW_values);
     std::unique_ptr<FEFaceValues<3>> post_face;
-    if (post_dof_handler != nullptr)
+    if (out.post != nullptr)
       post_face =
         std::make_unique<FEFaceValues<3>>(mapping,
-                                          post_dof_handler->get_fe(),
+                                          out.post->get_fe(),
                                           face_quadrature,
                                           update_values | update_JxW_values);
 
     const FEValuesExtractors::Vector     u(0);
-    std::vector<Tensor<1, 3>>            u_values(n_q);
+    std::vector<Tensor<1, 3>>            u_values(n_q), u_old(n_q);
     std::vector<Tensor<1, 3>>            phi(n_dofs);
-    std::vector<double>                  n_phi(n_dofs);
+    std::vector<Tensor<1, 3>>            D_phi(n_dofs);
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
     Vector<double>                       cell_residual(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<types::global_dof_index> post_indices;
-    Vector<double>                       post_weighted, post_weights;
+    Vector<double> post_p, post_slip, post_status, post_weights;
 
     for (unsigned int k = 0; k < faces.size(); ++k)
       {
         const auto &[cell, f] = faces[k];
         fe_face.reinit(cell, f);
         fe_face[u].get_function_values(solution, u_values);
+        if (friction_on)
+          fe_face[u].get_function_values(*committed_solution, u_old);
         const double eps     = penalty[cell->material_id()];
         bool         touched = false;
         cell_matrix          = 0;
@@ -101,19 +138,21 @@ namespace densify
               &cell->get_triangulation(),
               cell->level(),
               cell->index(),
-              post_dof_handler);
+              out.post);
             post_face->reinit(post_cell, f);
-            post_indices.resize(post_face->get_fe().n_dofs_per_cell());
+            const unsigned int n_post = post_face->get_fe().n_dofs_per_cell();
+            post_indices.resize(n_post);
             post_cell->get_dof_indices(post_indices);
-            post_weighted.reinit(post_indices.size());
-            post_weights.reinit(post_indices.size());
+            for (auto *v : {&post_p, &post_slip, &post_status, &post_weights})
+              v->reinit(n_post);
           }
 
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const Point<3> x     = fe_face.quadrature_point(q) + u_values[q];
             const double   JxW   = fe_face.JxW(q);
-            double         p_sum = 0;
+            double         p_sum = 0, slip_sum = 0, status_max = 0;
+            bool           have_phi = false;
             for (unsigned int t = 0; t < n_tools; ++t)
               {
                 const RigidTool &tool = tool_list[t];
@@ -121,44 +160,85 @@ namespace densify
                 double           curvature;
                 const double     g   = tool.gap(x, n, curvature);
                 const unsigned   idx = (k * n_q + q) * n_tools + t;
-                const double     p   = std::max(0., lambda[idx] - eps * g);
-                if (new_lambda != nullptr)
-                  (*new_lambda)[idx] = p;
+                const bool rough     = friction_on && friction_laws[t].mu > 0.;
+                // relative motion since the last accepted increment
+                const Tensor<1, 3> delta =
+                  rough ? Tensor<1, 3>(u_values[q] - u_old[q] -
+                                       (shift[t] - committed_shift[t])) :
+                          Tensor<1, 3>();
+                const ContactResponse r = evaluate_contact_law(
+                  lambda[idx],
+                  g,
+                  eps,
+                  n,
+                  rough ? committed_traction[idx] : Tensor<1, 3>(),
+                  delta,
+                  eps,
+                  rough ? friction_laws[t] : FrictionLaw());
+                const double p = r.pressure;
+                if (out.new_lambda != nullptr)
+                  (*out.new_lambda)[idx] = p;
+                if (out.new_traction != nullptr && rough)
+                  {
+                    (*out.new_traction)[idx] = r.traction;
+                    if (r.status == ContactStatus::slip)
+                      (*out.new_slip)[idx] += (delta - (delta * n) * n).norm();
+                  }
                 result.max_penetration = std::max(result.max_penetration, -g);
                 const bool predicted =
-                  (p <= 0. && matrix != nullptr && g < tangent_margin);
+                  (p <= 0. && out.matrix != nullptr && g < out.tangent_margin);
                 if (p <= 0. && !predicted)
                   continue;
+                if (!have_phi)
+                  {
+                    for (unsigned int i = 0; i < n_dofs; ++i)
+                      phi[i] = fe_face[u].value(i, q);
+                    have_phi = true;
+                  }
                 if (predicted)
                   {
                     // near contact: stiffness in the tangent only (predictor)
                     for (unsigned int i = 0; i < n_dofs; ++i)
-                      n_phi[i] = n * fe_face[u].value(i, q);
-                    for (unsigned int i = 0; i < n_dofs; ++i)
-                      for (unsigned int j = 0; j < n_dofs; ++j)
-                        cell_matrix(i, j) += eps * n_phi[i] * n_phi[j] * JxW;
+                      {
+                        const double n_phi_i = n * phi[i];
+                        for (unsigned int j = 0; j < n_dofs; ++j)
+                          cell_matrix(i, j) +=
+                            eps * n_phi_i * (n * phi[j]) * JxW;
+                      }
                     touched = true;
                     continue;
                   }
+                const Tensor<1, 3> traction = p * n + r.traction;
+                if (out.touching != nullptr && tool.kind == out.touching_kind)
+                  (*out.touching)[cell->material_id()] = 1;
                 p_sum += p;
+                if (rough)
+                  {
+                    slip_sum += accumulated_slip[idx];
+                    status_max =
+                      std::max(status_max, static_cast<double>(r.status));
+                  }
+                else
+                  status_max = std::max(status_max, 2.);
                 ++result.n_active;
+                if (r.status == ContactStatus::slip && rough)
+                  ++result.n_slip;
                 const unsigned int kind = static_cast<unsigned int>(tool.kind);
                 result.normal_force[kind] += p * JxW;
-                result.axial_force[kind] += -p * n[2] * JxW;
-                if (residual == nullptr)
+                result.axial_force[kind] += traction[2] * JxW;
+                result.friction_force[kind] += r.traction * JxW;
+                if (out.residual == nullptr)
                   continue;
                 touched = true;
                 for (unsigned int i = 0; i < n_dofs; ++i)
-                  {
-                    phi[i]   = fe_face[u].value(i, q);
-                    n_phi[i] = n * phi[i];
-                    cell_residual(i) -= p * n_phi[i] * JxW;
-                  }
-                if (matrix == nullptr)
+                  cell_residual(i) -= (traction * phi[i]) * JxW;
+                if (out.matrix == nullptr)
                   continue;
+                for (unsigned int j = 0; j < n_dofs; ++j)
+                  D_phi[j] = r.stiffness * phi[j];
                 for (unsigned int i = 0; i < n_dofs; ++i)
                   for (unsigned int j = 0; j < n_dofs; ++j)
-                    cell_matrix(i, j) += eps * n_phi[i] * n_phi[j] * JxW;
+                    cell_matrix(i, j) += (phi[i] * D_phi[j]) * JxW;
                 if (curvature > 0)
                   // concave die wall: p d(n)/dx = p/r (I_h - e_r e_r), PSD
                   for (unsigned int i = 0; i < n_dofs; ++i)
@@ -167,29 +247,33 @@ namespace densify
                         const double horizontal =
                           phi[i][0] * phi[j][0] + phi[i][1] * phi[j][1];
                         cell_matrix(i, j) +=
-                          p * curvature * (horizontal - n_phi[i] * n_phi[j]) *
-                          JxW;
+                          p * curvature *
+                          (horizontal - (n * phi[i]) * (n * phi[j])) * JxW;
                       }
               }
             if (post_face)
               for (unsigned int i = 0; i < post_indices.size(); ++i)
                 {
                   const double v = post_face->shape_value(i, q) * JxW;
-                  post_weighted(i) += v * p_sum;
+                  post_p(i) += v * p_sum;
+                  post_slip(i) += v * slip_sum;
+                  post_status(i) += v * status_max;
                   post_weights(i) += v;
                 }
           }
         if (post_face)
-          {
-            weighted->add(post_indices, post_weighted);
-            weights->add(post_indices, post_weights);
-          }
+          add_surface_field_values(post_indices,
+                                   post_p,
+                                   post_slip,
+                                   post_status,
+                                   post_weights,
+                                   *out.sums);
         if (touched)
           {
             cell->get_dof_indices(dof_indices);
-            residual->add(dof_indices, cell_residual);
-            if (matrix != nullptr)
-              matrix->add(dof_indices, cell_matrix);
+            out.residual->add(dof_indices, cell_residual);
+            if (out.matrix != nullptr)
+              out.matrix->add(dof_indices, cell_matrix);
           }
       }
 
@@ -200,9 +284,12 @@ namespace densify
           Utilities::MPI::sum(result.normal_force[t], comm);
         result.axial_force[t] =
           Utilities::MPI::sum(result.axial_force[t], comm);
+        result.friction_force[t] =
+          Utilities::MPI::sum(result.friction_force[t], comm);
       }
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
+    result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
   }
 
@@ -215,15 +302,11 @@ namespace densify
                         TrilinosWrappers::SparseMatrix      *matrix,
                         const double tangent_margin) const
   {
-    return loop(mapping,
-                solution,
-                &residual,
-                matrix,
-                tangent_margin,
-                nullptr,
-                nullptr,
-                nullptr,
-                nullptr);
+    Outputs out;
+    out.residual       = &residual;
+    out.matrix         = matrix;
+    out.tangent_margin = tangent_margin;
+    return loop(mapping, solution, out);
   }
 
 
@@ -232,15 +315,7 @@ namespace densify
   ToolContact::evaluate(const Mapping<3>                    &mapping,
                         const TrilinosWrappers::MPI::Vector &solution) const
   {
-    return loop(mapping,
-                solution,
-                nullptr,
-                nullptr,
-                0.,
-                nullptr,
-                nullptr,
-                nullptr,
-                nullptr);
+    return loop(mapping, solution, Outputs());
   }
 
 
@@ -250,35 +325,59 @@ namespace densify
                                   const TrilinosWrappers::MPI::Vector &solution)
   {
     std::vector<double> new_lambda(lambda.size());
-    loop(mapping,
-         solution,
-         nullptr,
-         nullptr,
-         0.,
-         &new_lambda,
-         nullptr,
-         nullptr,
-         nullptr);
+    Outputs             out;
+    out.new_lambda = &new_lambda;
+    loop(mapping, solution, out);
     lambda.swap(new_lambda);
   }
 
 
 
   void
-  ToolContact::project_pressure(const Mapping<3>                    &mapping,
-                                const TrilinosWrappers::MPI::Vector &solution,
-                                const DoFHandler<3>           &post_dof_handler,
-                                TrilinosWrappers::MPI::Vector &weighted,
-                                TrilinosWrappers::MPI::Vector &weights) const
+  ToolContact::commit(const Mapping<3>                    &mapping,
+                      const TrilinosWrappers::MPI::Vector &solution)
   {
-    loop(mapping,
-         solution,
-         nullptr,
-         nullptr,
-         0.,
-         nullptr,
-         &post_dof_handler,
-         &weighted,
-         &weights);
+    if (has_friction())
+      {
+        std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
+        std::vector<double>       new_slip = accumulated_slip;
+        Outputs                   out;
+        out.new_traction = &new_traction;
+        out.new_slip     = &new_slip;
+        loop(mapping, solution, out);
+        committed_traction.swap(new_traction);
+        accumulated_slip.swap(new_slip);
+      }
+    committed_shift = shift;
+  }
+
+
+
+  std::vector<unsigned int>
+  ToolContact::particles_touching(const Mapping<3>                    &mapping,
+                                  const TrilinosWrappers::MPI::Vector &solution,
+                                  const ToolKind kind) const
+  {
+    std::vector<unsigned int> touching(penalty.size(), 0);
+    Outputs                   out;
+    out.touching      = &touching;
+    out.touching_kind = kind;
+    loop(mapping, solution, out);
+    Utilities::MPI::max(touching, dof_handler->get_communicator(), touching);
+    return touching;
+  }
+
+
+
+  void
+  ToolContact::project_fields(const Mapping<3>                    &mapping,
+                              const TrilinosWrappers::MPI::Vector &solution,
+                              const DoFHandler<3> &post_dof_handler,
+                              SurfaceFieldSums    &sums) const
+  {
+    Outputs out;
+    out.post = &post_dof_handler;
+    out.sums = &sums;
+    loop(mapping, solution, out);
   }
 } // namespace densify

@@ -24,7 +24,8 @@ namespace densify
            "die_wall_force,relative_density,newton_iterations,"
            "linear_iterations,wall_seconds,die_wall_radial_force,"
            "stabilisation_force,max_penetration,augmentations,"
-           "particle_volume,step_seconds,increments,cutbacks";
+           "particle_volume,step_seconds,increments,cutbacks,"
+           "particle_contact_force,contact_pairs,slipping_points";
   }
 
 
@@ -42,6 +43,8 @@ namespace densify
         << s.max_penetration << ',' << s.augmentations << ','
         << std::setprecision(10) << s.particle_volume << ','
         << std::setprecision(4) << s.step_seconds << ',' << s.increments << ','
-        << s.cutbacks << std::endl;
+        << s.cutbacks << ',' << std::setprecision(10)
+        << s.particle_contact_force << ',' << s.contact_pairs << ','
+        << s.slipping_points << std::endl;
   }
 } // namespace densify

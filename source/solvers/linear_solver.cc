@@ -101,14 +101,13 @@ namespace densify
       {
         // a reused hierarchy gets a bounded number of iterations; if that
         // is not enough, it is rebuilt and the solve repeated
-        SolverControl              short_control(std::min(max_iterations,
+        SolverControl      short_control(std::min(max_iterations,
                                              3 * iterations_after_setup + 20),
                                     control.tolerance());
-        TimerOutput::Scope         t(timer, "Solve: CG");
-        TrilinosWrappers::SolverCG cg(short_control);
+        TimerOutput::Scope t(timer, "Solve: Krylov");
         try
           {
-            cg.solve(matrix, x, b, *amg);
+            krylov(short_control, matrix, x, b);
             last_iterations = short_control.last_step();
             return last_iterations;
           }
@@ -121,17 +120,17 @@ namespace densify
       }
 
     {
-      TimerOutput::Scope         t(timer, "Solve: CG");
-      TrilinosWrappers::SolverCG cg(control);
+      TimerOutput::Scope t(timer, "Solve: Krylov");
       try
         {
-          cg.solve(matrix, x, b, *amg);
+          krylov(control, matrix, x, b);
         }
       catch (const SolverControl::NoConvergence &e)
         {
           throw std::runtime_error(
-            "CG did not converge in " + std::to_string(e.last_step) +
-            " iterations (residual " + std::to_string(e.last_residual) +
+            "the Krylov solver did not converge in " +
+            std::to_string(e.last_step) + " iterations (residual " +
+            std::to_string(e.last_residual) +
             "); raise Solver/Maximum linear iterations or try "
             "Solver/Linear solver = direct");
         }
@@ -182,6 +181,27 @@ namespace densify
     last_iterations        = control.last_step();
     iterations_after_setup = last_iterations;
     return last_iterations;
+  }
+
+
+
+  void
+  LinearSolver::krylov(SolverControl                        &control,
+                       const TrilinosWrappers::SparseMatrix &matrix,
+                       TrilinosWrappers::MPI::Vector        &x,
+                       const TrilinosWrappers::MPI::Vector  &b)
+  {
+    if (type == "gmres-amg")
+      {
+        TrilinosWrappers::SolverGMRES gmres(
+          control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));
+        gmres.solve(matrix, x, b, *amg);
+      }
+    else
+      {
+        TrilinosWrappers::SolverCG cg(control);
+        cg.solve(matrix, x, b, *amg);
+      }
   }
 
 

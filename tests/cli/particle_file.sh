@@ -22,10 +22,13 @@ sed -n 3p out/particles.csv | grep -q '^1,1,Cu,'
 # the upper punch starts on the highest particle (z = 2) and touches only it
 tail -n 1 out/statistics.csv | cut -d, -f4 | grep -qv '^0$'
 echo ok
-# touching particles: warned that particle-particle contact is missing
+# touching particles: particle-particle contact is on, and the run reports
+# contact partners per particle
 "$DENSIFY" "$SOURCE_DIR/prm/default.prm" \
   --set "Particles/Centres=0,0,1.25; 2.5,0,1.25" \
   --set "Output/Directory=out_touch" --set "Output/Interval=0" \
   --set "Mesh/Element size=0.6" --set "Time stepping/Number of steps=1" > touch.txt
-grep -q "warning: 1 pair(s) of particles touch" touch.txt
+grep -q "particle-particle contact (friction 0.2 Coulomb)" touch.txt
+head -n 1 out_touch/particles.csv | grep -q ',contact_partners,die_contact$'
+[ "$(wc -l < out_touch/particles.csv)" -eq 3 ]
 echo ok

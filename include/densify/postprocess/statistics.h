@@ -47,6 +47,12 @@ namespace densify
     unsigned int increments = 0;
     /// Increments rolled back and retried with half the size.
     unsigned int cutbacks = 0;
+    /// Total normal force between particles (N, each contact once).
+    double particle_contact_force = 0.;
+    /// Number of particle pairs in contact.
+    unsigned int contact_pairs = 0;
+    /// Number of contact quadrature points that slip (tools and particles).
+    unsigned int slipping_points = 0;
   };
 
   /**

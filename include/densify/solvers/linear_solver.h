@@ -4,6 +4,7 @@
 
 #include <deal.II/base/timer.h>
 
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -26,7 +27,7 @@ namespace densify
    * near-null space is the six rigid-body modes of 3D elasticity, given
    * through ML's parameter list ("null space: type" = "pre-computed"), since
    * deal.II 9.4 has no DoFTools::extract_rigid_body_modes. "direct": Amesos
-   * KLU.
+   * KLU. "gmres-amg": GMRES with the same AMG, for nonsymmetric tangents.
    */
   class LinearSolver
   {
@@ -82,6 +83,13 @@ namespace densify
           const TrilinosWrappers::MPI::Vector  &b);
 
   private:
+    /// CG (or GMRES for "gmres-amg") with the AMG preconditioner.
+    void
+    krylov(SolverControl                        &control,
+           const TrilinosWrappers::SparseMatrix &matrix,
+           TrilinosWrappers::MPI::Vector        &x,
+           const TrilinosWrappers::MPI::Vector  &b);
+
     /// Build the ML hierarchy of @p matrix with the rigid-body modes.
     void
     setup_amg(const TrilinosWrappers::SparseMatrix &matrix);

@@ -1,0 +1,143 @@
+// The contact law at one contact point: augmented-Lagrangian normal pressure
+// and Coulomb friction (return map or arctangent regularisation), shared by
+// the tool contact and the particle-particle contact.
+#pragma once
+
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /// How the tangential traction follows the slip.
+  enum class FrictionModel
+  {
+    /// Coulomb stick/slip by an elastic-predictor / return map (penalty
+    /// stick stiffness).
+    coulomb,
+    /// The paper's law: t = -mu p (2/pi) atan(|s| / delta) s/|s|, no stick.
+    arctangent
+  };
+
+  /// Friction at one kind of contact.
+  struct FrictionLaw
+  {
+    /// Coulomb coefficient mu (0: frictionless, every friction term skipped).
+    double mu = 0.;
+    /// Model.
+    FrictionModel model = FrictionModel::coulomb;
+    /// Regularisation slip delta of the arctangent law (mm per increment).
+    double regularisation = 1e-4;
+    /// Keep the nonsymmetric coupling of the slip traction with the
+    /// pressure in the tangent (needs a nonsymmetric linear solver).
+    bool consistent = false;
+  };
+
+  /// Stick/slip state of a contact point (for output).
+  enum class ContactStatus : unsigned char
+  {
+    open  = 0,
+    stick = 1,
+    slip  = 2
+  };
+
+  /// Response of the contact law at one point.
+  struct ContactResponse
+  {
+    /// Normal pressure (MPa, >= 0).
+    double pressure = 0.;
+    /// Tangential traction on the slave side (MPa; orthogonal to n).
+    Tensor<1, 3> traction;
+    /// Stiffness: the derivative of -(p n + t) with respect to the relative
+    /// displacement of the slave point against its partner (MPa/mm).
+    Tensor<2, 3> stiffness;
+    /// Open, stick or slip.
+    ContactStatus status = ContactStatus::open;
+  };
+
+  /**
+   * Evaluate the contact law. @p lambda: normal multiplier, @p gap: signed
+   * normal gap (mm, negative when penetrating), @p eps: normal penalty,
+   * @p n: unit normal pointing from the partner to the slave point,
+   * @p committed_traction: tangential traction at the end of the last
+   * accepted increment, @p slip_increment: relative displacement of the slave
+   * point against its partner since then (mm; its tangential part is used),
+   * @p eps_t: tangential (stick) penalty. The traction on the slave is
+   * p n + t; Newton's residual gets -(p n + t) . phi.
+   */
+  inline ContactResponse
+  evaluate_contact_law(const double        lambda,
+                       const double        gap,
+                       const double        eps,
+                       const Tensor<1, 3> &n,
+                       const Tensor<1, 3> &committed_traction,
+                       const Tensor<1, 3> &slip_increment,
+                       const double        eps_t,
+                       const FrictionLaw  &friction)
+  {
+    ContactResponse r;
+    r.pressure = std::max(0., lambda - eps * gap);
+    if (r.pressure <= 0.)
+      return r;
+    // frictionless contact slides freely
+    r.status    = ContactStatus::slip;
+    r.stiffness = eps * outer_product(n, n);
+    if (friction.mu <= 0.)
+      return r;
+
+    const Tensor<2, 3> P     = unit_symmetric_tensor<3>() - outer_product(n, n);
+    const Tensor<1, 3> s     = P * slip_increment;
+    const double       limit = friction.mu * r.pressure;
+    if (friction.model == FrictionModel::coulomb)
+      {
+        const Tensor<1, 3> trial = P * committed_traction - eps_t * s;
+        const double       norm  = trial.norm();
+        if (norm <= limit)
+          {
+            r.status   = ContactStatus::stick;
+            r.traction = trial;
+            r.stiffness += eps_t * P;
+            return r;
+          }
+        const Tensor<1, 3> t_hat = trial / norm;
+        r.traction               = limit * t_hat;
+        if (friction.consistent)
+          r.stiffness +=
+            eps_t * limit / norm * (P - outer_product(t_hat, t_hat));
+        else
+          // secant: t = (limit / |trial|) trial with the factor frozen; keeps
+          // stiffness along the slip (the exact tangent has none there,
+          // which lets a nearly free particle take huge sideways steps)
+          r.stiffness += eps_t * limit / norm * P;
+      }
+    else
+      {
+        const double delta = friction.regularisation;
+        const double slip  = s.norm();
+        const double c     = limit * 2. / numbers::PI;
+        if (slip <= 1e-14 * delta)
+          {
+            // the limit slip -> 0 of the law below
+            r.stiffness += c / delta * P;
+            return r;
+          }
+        const Tensor<1, 3> s_hat = s / slip;
+        const double       a     = std::atan(slip / delta);
+        r.traction               = -c * a * s_hat;
+        r.stiffness +=
+          c * (1. / delta / (1. + (slip / delta) * (slip / delta)) *
+                 outer_product(s_hat, s_hat) +
+               a / slip * (P - outer_product(s_hat, s_hat)));
+      }
+    // t is proportional to p, and dp = -eps dg: the coupling (eps/p) t n^T
+    // of the consistent tangent is not symmetric
+    if (friction.consistent)
+      r.stiffness += eps / r.pressure * outer_product(r.traction, n);
+    return r;
+  }
+} // namespace densify

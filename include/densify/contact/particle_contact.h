@@ -1,0 +1,260 @@
+// Augmented-Lagrangian contact with Coulomb friction between the surfaces of
+// deformable particles: two-pass quadrature-point-to-facet, with a broad
+// (particles) and a narrow (facets) search.
+#pragma once
+
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/mapping.h>
+
+#include <densify/contact/broad_search.h>
+#include <densify/contact/contact_law.h>
+#include <densify/contact/facet_tree.h>
+#include <densify/contact/tool_contact.h>
+
+#include <array>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /// What one evaluation of the particle contact produced (on all ranks).
+  struct ParticleContactResult
+  {
+    /// Total normal force between particles (N; each contact once).
+    double normal_force = 0.;
+    /// Total friction force magnitude between particles (N; each contact
+    /// once).
+    double friction_force = 0.;
+    /// Largest penetration (mm, >= 0).
+    double max_penetration = 0.;
+    /// Number of slave quadrature points in contact, and of those slipping.
+    unsigned int n_active = 0, n_slip = 0;
+    /// Number of candidate particle pairs of the broad phase.
+    unsigned int n_candidate_pairs = 0;
+  };
+
+  /**
+   * Contact between the surfaces of different particles. Every boundary
+   * quadrature point of a particle (the slave) is projected onto the closest
+   * surface facet of the other particles (the master: the flat triangle
+   * through the facet's current vertices); the gap is g = (x_s - x_m) . n_m
+   * with n_m the facet's outward normal and x_m the master point given by the
+   * master cell's shape functions. The pressure p = max(0, lambda - eps g)
+   * (Uzawa multiplier lambda per slave point) and the friction traction act
+   * on the slave point and, opposite, on the master point, so action equals
+   * reaction. Both surfaces of a contact act as slave in turn (two passes,
+   * each with weight 1/2), which treats the bodies alike and avoids the
+   * penetration of master nodes into slave facets that one pass allows. The
+   * tangent eps n n^T plus the friction stiffness couples the slave and
+   * master cells; it neglects the change of the normal and of the projection
+   * point (symmetric positive semi-definite).
+   *
+   * Search in two stages: the broad phase (BroadSearch, a hashed cell grid
+   * over the particles' current bounding boxes) finds candidate particle
+   * pairs, the narrow phase (a FacetTree per particle) candidate master
+   * facets of every slave face; update_search() refreshes both in the
+   * current configuration. The matrix couplings that the candidates need
+   * are reported by add_couplings().
+   *
+   * The solution vectors must hold every DoF (fully ghosted): masters may
+   * lie anywhere.
+   */
+  class ParticleContact
+  {
+  public:
+    /**
+     * Collect the surface facets of all particles and the slave faces of the
+     * locally owned cells. @p penalty_per_particle[material_id] is eps; a
+     * pair of particles uses the smaller one.
+     */
+    void
+    setup(const DoFHandler<3>       &dof_handler,
+          const std::vector<double> &penalty_per_particle,
+          const FrictionLaw         &friction,
+          const unsigned int         quadrature_points_1d);
+
+    /// The displacement of the last accepted increment (all DoFs).
+    void
+    set_committed_solution(const TrilinosWrappers::MPI::Vector &committed)
+    {
+      committed_solution = &committed;
+    }
+
+    /// Set the regularisation slip of the arctangent law (mm).
+    void
+    set_friction_regularisation(const double delta)
+    {
+      friction.regularisation = delta;
+    }
+
+    /// Is there any particle-particle contact candidate at all?
+    bool
+    has_candidates() const
+    {
+      return !candidates.empty();
+    }
+
+    /**
+     * Refresh the broad and narrow search in the configuration of
+     * @p solution: candidate master facets of each slave face within
+     * @p margin (mm). Returns whether the matrix couplings the candidates
+     * need are all in the pattern made by the last add_couplings() (the same
+     * answer on every rank).
+     */
+    bool
+    update_search(const TrilinosWrappers::MPI::Vector &solution,
+                  const double                         margin);
+
+    /// Add the slave-master cell couplings of the current candidates (and
+    /// of every earlier call) to @p pattern.
+    void
+    add_couplings(TrilinosWrappers::SparsityPattern &pattern);
+
+    /// As ToolContact::assemble(): residual -(p n + t) . (phi_s - phi_m)
+    /// and its tangent.
+    ParticleContactResult
+    assemble(const Mapping<3>                    &mapping,
+             const TrilinosWrappers::MPI::Vector &solution,
+             TrilinosWrappers::MPI::Vector       &residual,
+             TrilinosWrappers::SparseMatrix      *matrix,
+             const double                         tangent_margin = 0.) const;
+
+    /// Forces and penetration only.
+    ParticleContactResult
+    evaluate(const Mapping<3>                    &mapping,
+             const TrilinosWrappers::MPI::Vector &solution) const;
+
+    /// lambda <- max(0, lambda - eps g).
+    void
+    update_multipliers(const Mapping<3>                    &mapping,
+                       const TrilinosWrappers::MPI::Vector &solution);
+
+    /// Accept @p solution as the start of the next increment (friction).
+    void
+    commit(const Mapping<3>                    &mapping,
+           const TrilinosWrappers::MPI::Vector &solution);
+
+    /// Number of distinct contact partners of each particle at @p solution
+    /// (on every rank).
+    std::vector<unsigned int>
+    contact_partners(const Mapping<3>                    &mapping,
+                     const TrilinosWrappers::MPI::Vector &solution) const;
+
+    /// As ToolContact::project_fields().
+    void
+    project_fields(const Mapping<3>                    &mapping,
+                   const TrilinosWrappers::MPI::Vector &solution,
+                   const DoFHandler<3>                 &post_dof_handler,
+                   SurfaceFieldSums                    &sums) const;
+
+    /// Multipliers and friction history, for roll-back and checkpoints.
+    using State = ToolContact::State;
+
+    /// The state.
+    State
+    state() const
+    {
+      return {lambda, committed_traction, accumulated_slip, {}};
+    }
+
+    /// Restore a state saved by state() (same setup).
+    void
+    set_state(const State &saved)
+    {
+      lambda             = saved.lambda;
+      committed_traction = saved.traction;
+      accumulated_slip   = saved.slip;
+    }
+
+  private:
+    /// A surface facet: a boundary face of some particle's cell.
+    struct Facet
+    {
+      DoFHandler<3>::active_cell_iterator cell;
+      unsigned int                        face     = 0;
+      unsigned int                        particle = 0;
+      /// The cell's local vertex numbers of the face's vertices, then the
+      /// opposite vertex.
+      std::array<unsigned int, 4> local_vertex = {{0, 0, 0, 0}};
+    };
+
+    /// The contact partner of one slave quadrature point.
+    struct Projection
+    {
+      /// Facet index (numbers::invalid_unsigned_int: none).
+      unsigned int facet = numbers::invalid_unsigned_int;
+      /// Barycentric coordinates on the facet's vertices.
+      std::array<double, 3> bary = {{0., 0., 0.}};
+      /// Outward unit normal of the facet.
+      Tensor<1, 3> normal;
+    };
+
+    /// What one pass writes besides the result.
+    struct Outputs
+    {
+      TrilinosWrappers::MPI::Vector           *residual       = nullptr;
+      TrilinosWrappers::SparseMatrix          *matrix         = nullptr;
+      double                                   tangent_margin = 0.;
+      std::vector<double>                     *new_lambda     = nullptr;
+      std::vector<Tensor<1, 3>>               *new_traction   = nullptr;
+      std::vector<double>                     *new_slip       = nullptr;
+      std::set<std::pair<unsigned, unsigned>> *pairs          = nullptr;
+      const DoFHandler<3>                     *post           = nullptr;
+      SurfaceFieldSums                        *sums           = nullptr;
+    };
+
+    /// One pass over the slave points; the core of the class.
+    ParticleContactResult
+    loop(const Mapping<3>                    &mapping,
+         const TrilinosWrappers::MPI::Vector &solution,
+         const Outputs                       &out) const;
+
+    /// Current positions of all vertices of the triangulation.
+    std::vector<Point<3>>
+    current_vertices(const TrilinosWrappers::MPI::Vector &solution) const;
+
+    /// Closest point of the facet @p m to @p x in the current configuration
+    /// @p vertices.
+    Projection
+    project(const Point<3>              &x,
+            const unsigned int           m,
+            const std::vector<Point<3>> &vertices,
+            double                      &distance_squared) const;
+
+    const DoFHandler<3>                 *dof_handler        = nullptr;
+    const TrilinosWrappers::MPI::Vector *committed_solution = nullptr;
+    std::vector<double>                  penalty;
+    FrictionLaw                          friction;
+    Quadrature<2>                        face_quadrature;
+    unsigned int                         n_particles = 0;
+
+    /// All surface facets, by particle (facets_of[p] ranges over facets).
+    std::vector<Facet>        facets;
+    std::vector<unsigned int> first_facet;
+    /// The slave faces (boundary faces of locally owned cells): facet index.
+    std::vector<unsigned int> slave_faces;
+    /// Candidate master facets of each slave face (CSR).
+    std::vector<unsigned int> candidate_start, candidates;
+    /// Cell couplings (active cell indices) of the candidates, and those of
+    /// the pattern made last.
+    std::set<std::pair<unsigned, unsigned>> couplings, pattern_couplings;
+
+    BroadSearch            broad_search;
+    std::vector<FacetTree> trees;
+
+    /// Per slave quadrature point (slave face * n_q + q).
+    std::vector<double>       lambda;
+    std::vector<Tensor<1, 3>> committed_traction;
+    std::vector<double>       accumulated_slip;
+  };
+} // namespace densify

@@ -1,0 +1,621 @@
+// Augmented-Lagrangian contact with Coulomb friction between the surfaces of
+// deformable particles.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <densify/contact/particle_contact.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace densify
+{
+  namespace
+  {
+    /// The vertices of the reference tetrahedron.
+    const std::array<Point<3>, 4> reference_vertices = {{Point<3>(0, 0, 0),
+                                                         Point<3>(1, 0, 0),
+                                                         Point<3>(0, 1, 0),
+                                                         Point<3>(0, 0, 1)}};
+
+    /**
+     * Closest point of the triangle (a, b, c) to @p p as barycentric
+     * coordinates (Ericson, Real-Time Collision Detection, 5.1.5).
+     */
+    std::array<double, 3>
+    closest_on_triangle(const Point<3> &p,
+                        const Point<3> &a,
+                        const Point<3> &b,
+                        const Point<3> &c)
+    {
+      const Tensor<1, 3> ab = b - a, ac = c - a, ap = p - a;
+      const double       d1 = ab * ap, d2 = ac * ap;
+      if (d1 <= 0 && d2 <= 0)
+        return {{1., 0., 0.}};
+      const Tensor<1, 3> bp = p - b;
+      const double       d3 = ab * bp, d4 = ac * bp;
+      if (d3 >= 0 && d4 <= d3)
+        return {{0., 1., 0.}};
+      const double vc = d1 * d4 - d3 * d2;
+      if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        {
+          const double v = d1 / (d1 - d3);
+          return {{1 - v, v, 0.}};
+        }
+      const Tensor<1, 3> cp = p - c;
+      const double       d5 = ab * cp, d6 = ac * cp;
+      if (d6 >= 0 && d5 <= d6)
+        return {{0., 0., 1.}};
+      const double vb = d5 * d2 - d1 * d6;
+      if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        {
+          const double w = d2 / (d2 - d6);
+          return {{1 - w, 0., w}};
+        }
+      const double va = d3 * d6 - d5 * d4;
+      if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        {
+          const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+          return {{0., 1 - w, w}};
+        }
+      const double denominator = 1. / (va + vb + vc);
+      const double v = vb * denominator, w = vc * denominator;
+      return {{1 - v - w, v, w}};
+    }
+  } // namespace
+
+
+
+  void
+  ParticleContact::setup(const DoFHandler<3>       &dof_handler,
+                         const std::vector<double> &penalty_per_particle,
+                         const FrictionLaw         &friction_law,
+                         const unsigned int         quadrature_points_1d)
+  {
+    this->dof_handler = &dof_handler;
+    penalty           = penalty_per_particle;
+    friction          = friction_law;
+    face_quadrature   = QGaussSimplex<2>(quadrature_points_1d);
+    n_particles       = penalty.size();
+
+    // all surface facets, grouped by particle
+    std::vector<std::vector<Facet>> by_particle(n_particles);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            Facet facet;
+            facet.cell        = cell;
+            facet.face        = f;
+            facet.particle    = cell->material_id();
+            unsigned int used = 0;
+            for (unsigned int fv = 0; fv < 3; ++fv)
+              for (unsigned int v = 0; v < 4; ++v)
+                if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
+                  {
+                    facet.local_vertex[fv] = v;
+                    used |= (1u << v);
+                  }
+            for (unsigned int v = 0; v < 4; ++v)
+              if ((used & (1u << v)) == 0)
+                facet.local_vertex[3] = v;
+            by_particle[facet.particle].push_back(facet);
+          }
+    facets.clear();
+    first_facet.assign(1, 0);
+    for (const auto &list : by_particle)
+      {
+        facets.insert(facets.end(), list.begin(), list.end());
+        first_facet.push_back(facets.size());
+      }
+    slave_faces.clear();
+    for (unsigned int m = 0; m < facets.size(); ++m)
+      if (facets[m].cell->is_locally_owned())
+        slave_faces.push_back(m);
+    candidate_start.assign(slave_faces.size() + 1, 0);
+    candidates.clear();
+    couplings.clear();
+    pattern_couplings.clear();
+    trees.assign(n_particles, FacetTree());
+
+    const std::size_t n_points = slave_faces.size() * face_quadrature.size();
+    lambda.assign(n_points, 0.);
+    committed_traction.assign(friction.mu > 0 ? n_points : 0, Tensor<1, 3>());
+    accumulated_slip.assign(friction.mu > 0 ? n_points : 0, 0.);
+  }
+
+
+
+  std::vector<Point<3>>
+  ParticleContact::current_vertices(
+    const TrilinosWrappers::MPI::Vector &solution) const
+  {
+    const Triangulation<3> &tria = dof_handler->get_triangulation();
+    std::vector<Point<3>>   x(tria.n_vertices());
+    std::vector<bool>       done(tria.n_vertices(), false);
+    for (const Facet &facet : facets)
+      for (unsigned int k = 0; k < 4; ++k)
+        {
+          const unsigned int v = facet.local_vertex[k];
+          const unsigned int i = facet.cell->vertex_index(v);
+          if (done[i])
+            continue;
+          done[i] = true;
+          x[i]    = facet.cell->vertex(v);
+          for (unsigned int d = 0; d < 3; ++d)
+            x[i][d] += solution(facet.cell->vertex_dof_index(v, d));
+        }
+    return x;
+  }
+
+
+
+  bool
+  ParticleContact::update_search(const TrilinosWrappers::MPI::Vector &solution,
+                                 const double                         margin)
+  {
+    const std::vector<Point<3>> x = current_vertices(solution);
+    // facet boxes and particle boxes in the current configuration
+    std::vector<BoundingBox<3>> facet_box(facets.size());
+    std::vector<BoundingBox<3>> particle_box(n_particles);
+    for (unsigned int m = 0; m < facets.size(); ++m)
+      {
+        const Facet          &facet = facets[m];
+        std::vector<Point<3>> corners;
+        for (unsigned int k = 0; k < 3; ++k)
+          corners.push_back(x[facet.cell->vertex_index(facet.local_vertex[k])]);
+        facet_box[m] = BoundingBox<3>(corners);
+      }
+    for (unsigned int p = 0; p < n_particles; ++p)
+      if (first_facet[p + 1] > first_facet[p])
+        {
+          particle_box[p] = facet_box[first_facet[p]];
+          for (unsigned int m = first_facet[p] + 1; m < first_facet[p + 1]; ++m)
+            particle_box[p].merge_with(facet_box[m]);
+        }
+
+    // broad phase: candidate particle pairs; narrow phase trees for the
+    // particles that have a partner
+    const std::vector<CandidatePair> &pairs =
+      broad_search.update(particle_box, margin);
+    std::vector<std::vector<unsigned int>> partners(n_particles);
+    for (const auto &[a, b] : pairs)
+      {
+        partners[a].push_back(b);
+        partners[b].push_back(a);
+      }
+    std::vector<bool> built(n_particles, false);
+    auto              tree = [&](const unsigned int p) -> const FacetTree              &{
+      if (!built[p])
+        {
+          trees[p].build(
+            std::vector<BoundingBox<3>>(facet_box.begin() + first_facet[p],
+                                        facet_box.begin() +
+                                          first_facet[p + 1]));
+          built[p] = true;
+        }
+      return trees[p];
+    };
+
+    candidates.clear();
+    candidate_start.assign(1, 0);
+    std::vector<unsigned> hits;
+    for (const unsigned int s : slave_faces)
+      {
+        for (const unsigned int b : partners[facets[s].particle])
+          {
+            hits.clear();
+            tree(b).query(facet_box[s], margin, hits);
+            for (const unsigned int h : hits)
+              {
+                const unsigned int m = first_facet[b] + h;
+                candidates.push_back(m);
+                couplings.emplace(facets[s].cell->active_cell_index(),
+                                  facets[m].cell->active_cell_index());
+              }
+          }
+        candidate_start.push_back(candidates.size());
+      }
+    bool covered = std::includes(pattern_couplings.begin(),
+                                 pattern_couplings.end(),
+                                 couplings.begin(),
+                                 couplings.end());
+    return Utilities::MPI::min(covered ? 1 : 0,
+                               dof_handler->get_communicator()) == 1;
+  }
+
+
+
+  void
+  ParticleContact::add_couplings(TrilinosWrappers::SparsityPattern &pattern)
+  {
+    pattern_couplings.insert(couplings.begin(), couplings.end());
+    couplings = pattern_couplings;
+    std::vector<DoFHandler<3>::active_cell_iterator> cell_of(
+      dof_handler->get_triangulation().n_active_cells());
+    for (const Facet &facet : facets)
+      cell_of[facet.cell->active_cell_index()] = facet.cell;
+    const unsigned int n = dof_handler->get_fe().n_dofs_per_cell();
+    std::vector<types::global_dof_index> a(n), b(n);
+    for (const auto &[i, j] : pattern_couplings)
+      {
+        cell_of[i]->get_dof_indices(a);
+        cell_of[j]->get_dof_indices(b);
+        for (const auto row : a)
+          pattern.add_entries(row, b.begin(), b.end());
+        for (const auto row : b)
+          pattern.add_entries(row, a.begin(), a.end());
+      }
+  }
+
+
+
+  ParticleContact::Projection
+  ParticleContact::project(const Point<3>              &x,
+                           const unsigned int           m,
+                           const std::vector<Point<3>> &vertices,
+                           double                      &distance_squared) const
+  {
+    const Facet            &facet = facets[m];
+    std::array<Point<3>, 4> c;
+    for (unsigned int k = 0; k < 4; ++k)
+      c[k] = vertices[facet.cell->vertex_index(facet.local_vertex[k])];
+    Projection result;
+    result.facet = m;
+    result.bary  = closest_on_triangle(x, c[0], c[1], c[2]);
+    const Point<3> y =
+      result.bary[0] * c[0] + result.bary[1] * c[1] + result.bary[2] * c[2];
+    distance_squared = (x - y).norm_square();
+    Tensor<1, 3> n   = cross_product_3d(c[1] - c[0], c[2] - c[0]);
+    if (n * (c[3] - c[0]) > 0)
+      n = -n;
+    result.normal = n / n.norm();
+    return result;
+  }
+
+
+
+  ParticleContactResult
+  ParticleContact::loop(const Mapping<3>                    &mapping,
+                        const TrilinosWrappers::MPI::Vector &solution,
+                        const Outputs                       &out) const
+  {
+    ParticleContactResult result;
+    const MPI_Comm        comm = dof_handler->get_communicator();
+    result.n_candidate_pairs   = broad_search.pairs().size();
+
+    const bool friction_on = friction.mu > 0.;
+    Assert(!friction_on || committed_solution != nullptr,
+           ExcMessage("friction needs set_committed_solution()"));
+    const FiniteElement<3>          &fe     = dof_handler->get_fe();
+    const unsigned int               n_q    = face_quadrature.size();
+    const unsigned int               n_dofs = fe.n_dofs_per_cell();
+    FEFaceValues<3>                  fe_face(mapping,
+                            fe,
+                            face_quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+    std::unique_ptr<FEFaceValues<3>> post_face;
+    if (out.post != nullptr)
+      post_face =
+        std::make_unique<FEFaceValues<3>>(mapping,
+                                          out.post->get_fe(),
+                                          face_quadrature,
+                                          update_values | update_JxW_values);
+    const std::vector<Point<3>> x_now = current_vertices(solution);
+    std::vector<unsigned int>   component(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+
+    const FEValuesExtractors::Vector     u(0);
+    std::vector<Tensor<1, 3>>            u_values(n_q), u_old(n_q);
+    std::vector<Tensor<1, 3>>            psi(2 * n_dofs), D_psi(2 * n_dofs);
+    Vector<double>                       master_u(n_dofs), master_old(n_dofs);
+    std::vector<double>                  master_phi(n_dofs);
+    FullMatrix<double>                   pair_matrix(2 * n_dofs, 2 * n_dofs);
+    Vector<double>                       pair_residual(2 * n_dofs);
+    std::vector<types::global_dof_index> pair_dofs(2 * n_dofs),
+      master_dofs(n_dofs);
+    std::vector<types::global_dof_index> post_indices;
+    Vector<double> post_p, post_slip, post_status, post_weights;
+    // two passes, each surface slave once: weight 1/2
+    const double weight = 0.5;
+
+    for (unsigned int k = 0; k < slave_faces.size(); ++k)
+      {
+        const unsigned int begin = candidate_start[k],
+                           end   = candidate_start[k + 1];
+        if (begin == end && post_face == nullptr)
+          continue;
+        const Facet &slave = facets[slave_faces[k]];
+        fe_face.reinit(slave.cell, slave.face);
+        if (post_face)
+          {
+            const typename DoFHandler<3>::active_cell_iterator post_cell(
+              &slave.cell->get_triangulation(),
+              slave.cell->level(),
+              slave.cell->index(),
+              out.post);
+            post_face->reinit(post_cell, slave.face);
+            const unsigned int n_post = post_face->get_fe().n_dofs_per_cell();
+            post_indices.resize(n_post);
+            post_cell->get_dof_indices(post_indices);
+            for (auto *v : {&post_p, &post_slip, &post_status, &post_weights})
+              v->reinit(n_post);
+          }
+        if (begin < end)
+          {
+            fe_face[u].get_function_values(solution, u_values);
+            if (friction_on)
+              fe_face[u].get_function_values(*committed_solution, u_old);
+            slave.cell->get_dof_indices(master_dofs);
+            std::copy(master_dofs.begin(),
+                      master_dofs.end(),
+                      pair_dofs.begin());
+          }
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const double JxW   = fe_face.JxW(q);
+            double       p_out = 0, slip_out = 0, status_out = 0;
+            if (begin < end)
+              {
+                // the closest candidate facet
+                const Point<3> x_s = fe_face.quadrature_point(q) + u_values[q];
+                Projection     best;
+                double best_distance = std::numeric_limits<double>::max();
+                for (unsigned int c = begin; c < end; ++c)
+                  {
+                    double           d2;
+                    const Projection pr =
+                      project(x_s, candidates[c], x_now, d2);
+                    if (d2 < best_distance)
+                      {
+                        best_distance = d2;
+                        best          = pr;
+                      }
+                  }
+                const Facet       &master = facets[best.facet];
+                const unsigned int idx    = k * n_q + q;
+                // master point and displacement by the master's shape
+                // functions at the projection
+                Point<3> xi;
+                for (unsigned int a = 0; a < 3; ++a)
+                  xi +=
+                    best.bary[a] * reference_vertices[master.local_vertex[a]];
+                master.cell->get_dof_values(solution, master_u);
+                Point<3> X_m;
+                for (unsigned int a = 0; a < 3; ++a)
+                  X_m +=
+                    best.bary[a] * master.cell->vertex(master.local_vertex[a]);
+                Tensor<1, 3> u_m, u_m_old;
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    master_phi[i] = fe.shape_value(i, xi);
+                    u_m[component[i]] += master_u(i) * master_phi[i];
+                  }
+                if (friction_on)
+                  {
+                    master.cell->get_dof_values(*committed_solution,
+                                                master_old);
+                    for (unsigned int i = 0; i < n_dofs; ++i)
+                      u_m_old[component[i]] += master_old(i) * master_phi[i];
+                  }
+                const Tensor<1, 3> &n = best.normal;
+                const double        g = (x_s - (X_m + u_m)) * n;
+                const double        eps =
+                  std::min(penalty[slave.particle], penalty[master.particle]);
+                const Tensor<1, 3> delta =
+                  friction_on ?
+                    Tensor<1, 3>((u_values[q] - u_old[q]) - (u_m - u_m_old)) :
+                    Tensor<1, 3>();
+                const ContactResponse r =
+                  evaluate_contact_law(lambda[idx],
+                                       g,
+                                       eps,
+                                       n,
+                                       friction_on ? committed_traction[idx] :
+                                                     Tensor<1, 3>(),
+                                       delta,
+                                       eps,
+                                       friction);
+                const double p = r.pressure;
+                if (out.new_lambda != nullptr)
+                  (*out.new_lambda)[idx] = p;
+                if (out.new_traction != nullptr && friction_on)
+                  {
+                    (*out.new_traction)[idx] = r.traction;
+                    if (r.status == ContactStatus::slip)
+                      (*out.new_slip)[idx] += (delta - (delta * n) * n).norm();
+                  }
+                result.max_penetration = std::max(result.max_penetration, -g);
+                const bool predicted =
+                  (p <= 0. && out.matrix != nullptr && g < out.tangent_margin);
+                if (p > 0. || predicted)
+                  {
+                    // relative shape functions: slave phi, minus master phi
+                    master.cell->get_dof_indices(master_dofs);
+                    std::copy(master_dofs.begin(),
+                              master_dofs.end(),
+                              pair_dofs.begin() + n_dofs);
+                    for (unsigned int i = 0; i < n_dofs; ++i)
+                      {
+                        psi[i]                        = fe_face[u].value(i, q);
+                        psi[n_dofs + i]               = Tensor<1, 3>();
+                        psi[n_dofs + i][component[i]] = -master_phi[i];
+                      }
+                    if (p > 0.)
+                      {
+                        ++result.n_active;
+                        if (friction_on && r.status == ContactStatus::slip)
+                          ++result.n_slip;
+                        result.normal_force += weight * p * JxW;
+                        result.friction_force +=
+                          weight * r.traction.norm() * JxW;
+                        p_out      = p;
+                        slip_out   = friction_on ? accumulated_slip[idx] : 0.;
+                        status_out = static_cast<double>(r.status);
+                        if (out.pairs != nullptr)
+                          out.pairs->emplace(
+                            std::min(slave.particle, master.particle),
+                            std::max(slave.particle, master.particle));
+                        if (out.residual != nullptr)
+                          {
+                            // the traction acts on the slave and, opposite, on
+                            // the master point: action = reaction
+                            const Tensor<1, 3> traction = p * n + r.traction;
+                            for (unsigned int i = 0; i < 2 * n_dofs; ++i)
+                              pair_residual(i) =
+                                -weight * (traction * psi[i]) * JxW;
+                            out.residual->add(pair_dofs, pair_residual);
+                          }
+                      }
+                    if (out.matrix != nullptr)
+                      {
+                        // predicted contacts: normal stiffness in the tangent
+                        // only
+                        const Tensor<2, 3> D =
+                          (p > 0. ? r.stiffness : eps * outer_product(n, n));
+                        for (unsigned int j = 0; j < 2 * n_dofs; ++j)
+                          D_psi[j] = D * psi[j];
+                        for (unsigned int i = 0; i < 2 * n_dofs; ++i)
+                          for (unsigned int j = 0; j < 2 * n_dofs; ++j)
+                            pair_matrix(i, j) =
+                              weight * (psi[i] * D_psi[j]) * JxW;
+                        out.matrix->add(pair_dofs, pair_matrix);
+                      }
+                  }
+              }
+            if (post_face)
+              for (unsigned int i = 0; i < post_indices.size(); ++i)
+                {
+                  const double v = post_face->shape_value(i, q) * JxW;
+                  post_p(i) += v * p_out;
+                  post_slip(i) += v * slip_out;
+                  post_status(i) += v * status_out;
+                  post_weights(i) += v;
+                }
+          }
+        if (post_face)
+          add_surface_field_values(post_indices,
+                                   post_p,
+                                   post_slip,
+                                   post_status,
+                                   post_weights,
+                                   *out.sums);
+      }
+
+    result.normal_force    = Utilities::MPI::sum(result.normal_force, comm);
+    result.friction_force  = Utilities::MPI::sum(result.friction_force, comm);
+    result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
+    result.n_active        = Utilities::MPI::sum(result.n_active, comm);
+    result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
+    return result;
+  }
+
+
+
+  ParticleContactResult
+  ParticleContact::assemble(const Mapping<3>                    &mapping,
+                            const TrilinosWrappers::MPI::Vector &solution,
+                            TrilinosWrappers::MPI::Vector       &residual,
+                            TrilinosWrappers::SparseMatrix      *matrix,
+                            const double tangent_margin) const
+  {
+    Outputs out;
+    out.residual       = &residual;
+    out.matrix         = matrix;
+    out.tangent_margin = tangent_margin;
+    return loop(mapping, solution, out);
+  }
+
+
+
+  ParticleContactResult
+  ParticleContact::evaluate(const Mapping<3>                    &mapping,
+                            const TrilinosWrappers::MPI::Vector &solution) const
+  {
+    return loop(mapping, solution, Outputs());
+  }
+
+
+
+  void
+  ParticleContact::update_multipliers(
+    const Mapping<3>                    &mapping,
+    const TrilinosWrappers::MPI::Vector &solution)
+  {
+    std::vector<double> new_lambda(lambda.size());
+    Outputs             out;
+    out.new_lambda = &new_lambda;
+    loop(mapping, solution, out);
+    lambda.swap(new_lambda);
+  }
+
+
+
+  void
+  ParticleContact::commit(const Mapping<3>                    &mapping,
+                          const TrilinosWrappers::MPI::Vector &solution)
+  {
+    if (friction.mu <= 0.)
+      return;
+    std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
+    std::vector<double>       new_slip = accumulated_slip;
+    Outputs                   out;
+    out.new_traction = &new_traction;
+    out.new_slip     = &new_slip;
+    loop(mapping, solution, out);
+    committed_traction.swap(new_traction);
+    accumulated_slip.swap(new_slip);
+  }
+
+
+
+  std::vector<unsigned int>
+  ParticleContact::contact_partners(
+    const Mapping<3>                    &mapping,
+    const TrilinosWrappers::MPI::Vector &solution) const
+  {
+    std::set<std::pair<unsigned, unsigned>> pairs;
+    Outputs                                 out;
+    out.pairs = &pairs;
+    loop(mapping, solution, out);
+    std::vector<unsigned int> flat;
+    for (const auto &[a, b] : pairs)
+      {
+        flat.push_back(a);
+        flat.push_back(b);
+      }
+    std::set<std::pair<unsigned, unsigned>> all;
+    for (const auto &list :
+         Utilities::MPI::all_gather(dof_handler->get_communicator(), flat))
+      for (unsigned int i = 0; i + 1 < list.size(); i += 2)
+        all.emplace(list[i], list[i + 1]);
+    std::vector<unsigned int> partners(n_particles, 0);
+    for (const auto &[a, b] : all)
+      {
+        ++partners[a];
+        ++partners[b];
+      }
+    return partners;
+  }
+
+
+
+  void
+  ParticleContact::project_fields(const Mapping<3>                    &mapping,
+                                  const TrilinosWrappers::MPI::Vector &solution,
+                                  const DoFHandler<3> &post_dof_handler,
+                                  SurfaceFieldSums    &sums) const
+  {
+    Outputs out;
+    out.post = &post_dof_handler;
+    out.sums = &sums;
+    loop(mapping, solution, out);
+  }
+} // namespace densify

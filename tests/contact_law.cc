@@ -1,0 +1,68 @@
+// The contact law's stiffness against central finite differences of the
+// traction, for Coulomb stick, Coulomb slip and the arctangent law, with the
+// consistent tangent; and the symmetric tangent is symmetric.
+#include <densify/contact/contact_law.h>
+
+#include "test_utilities.h"
+
+#include <iomanip>
+#include <iostream>
+
+int
+main()
+{
+  using namespace densify;
+  Tensor<1, 3> n({0.2, -0.3, 1.});
+  n /= n.norm();
+  const Tensor<1, 3> t_old0({0.3, -0.2, 0.06});
+  const double       eps = 1e3, lambda = 0.5, g0 = -1e-3;
+  const char        *names[] = {"open", "stick", "slip"};
+  for (const FrictionModel model :
+       {FrictionModel::coulomb, FrictionModel::arctangent})
+    for (const double slip : {1e-6, 1e-3})
+      for (const double history : {0.01, 1.})
+        {
+          const Tensor<1, 3> t_old = history * t_old0;
+          FrictionLaw        law;
+          law.mu             = 0.2;
+          law.model          = model;
+          law.regularisation = 1e-4;
+          law.consistent     = true;
+          const Tensor<1, 3> d0({0.7 * slip, 0.4 * slip, -0.1 * slip});
+          // the traction -(p n + t) as a function of the relative displacement
+          auto f = [&](const Tensor<1, 3> &d) {
+            const ContactResponse r = evaluate_contact_law(
+              lambda, g0 + n * d, eps, n, t_old, d, eps, law);
+            return Tensor<1, 3>(-(r.pressure * n + r.traction));
+          };
+          const ContactResponse r0 = evaluate_contact_law(
+            lambda, g0 + n * d0, eps, n, t_old, d0, eps, law);
+          double error = 0;
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              Tensor<1, 3> e;
+              e[j]                  = 1e-7 * slip;
+              const Tensor<1, 3> fd = (f(d0 + e) - f(d0 - e)) / (2 * e[j]);
+              for (unsigned int i = 0; i < 3; ++i)
+                error = std::max(error, std::abs(fd[i] - r0.stiffness[i][j]));
+            }
+          error /= r0.stiffness.norm();
+          // the default (secant) tangent is symmetric
+          law.consistent = false;
+          const Tensor<2, 3> K =
+            evaluate_contact_law(
+              lambda, g0 + n * d0, eps, n, t_old, d0, eps, law)
+              .stiffness;
+          const double asymmetry = (K - transpose(K)).norm() / K.norm();
+          std::cout << (model == FrictionModel::coulomb ? "Coulomb   " :
+                                                          "arctangent")
+                    << " slip " << std::setw(5) << slip << " history "
+                    << std::setw(4) << history << " "
+                    << names[static_cast<int>(r0.status)]
+                    << ": consistent tangent vs FD "
+                    << testing::yes(error < 1e-6)
+                    << ", symmetric tangent symmetric "
+                    << testing::yes(asymmetry < 1e-14) << std::endl;
+        }
+  return testing::all_passed ? 0 : 1;
+}
