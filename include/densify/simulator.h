@@ -30,6 +30,8 @@
 
 namespace densify
 {
+  class NodalAveraging;
+
   /**
    * Runs one scene: builds the multi-body mesh of all particles, then for each
    * load step moves the upper punch and solves the quasi-static equilibrium
@@ -217,6 +219,9 @@ namespace densify
     /// travel that caused it (for the extrapolating predictor).
     TrilinosWrappers::MPI::Vector last_increment;
     double                        last_punch_increment = 0.;
+
+    /// F-bar with nodal averaging (P1 locking remedy); nullptr when off.
+    std::unique_ptr<NodalAveraging> nodal_averaging;
 
     ToolContact                   tool_contact;
     std::unique_ptr<LinearSolver> linear_solver;
