@@ -72,6 +72,17 @@ namespace densify
         "Polynomial degree of the displacement on each tetrahedron: 1 (linear) "
         "or 2 (quadratic).",
         Patterns::Integer(1, 2));
+      prm.add_parameter(
+        "Volumetric locking remedy",
+        mesh.locking_remedy,
+        "Remedy of the volumetric locking of linear tetrahedra under "
+        "isochoric plastic flow. nodal averaging: F-bar with the volume "
+        "ratio averaged over the cells around each vertex (Bonet & Burton "
+        "1998; doc/theory.md); Polynomial degree = 1 only. none: plain "
+        "elements. auto: nodal averaging for Polynomial degree = 1 with "
+        "Material/Model = J2 plasticity, none otherwise (quadratic "
+        "tetrahedra do not lock).",
+        Patterns::Selection("auto|nodal averaging|none"));
     }
     prm.leave_subsection();
 

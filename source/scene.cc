@@ -2,6 +2,7 @@
 // load history.
 #include <deal.II/base/utilities.h>
 
+#include <densify/assembly/nodal_averaging.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
 
@@ -126,6 +127,9 @@ namespace densify
         "Tools/Upper punch/Initial position must be above Tools/Lower "
         "punch/Position");
     check_particles(particles, container, 1e-9 * top);
+
+    // a locking remedy the mesh cannot take is an input error too
+    use_nodal_averaging(prm);
 
     // unknown material names are input errors too
     for (const Particle &p : particles)

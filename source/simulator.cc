@@ -14,6 +14,7 @@
 
 #include <deal.II/numerics/data_out.h>
 
+#include <densify/assembly/nodal_averaging.h>
 #include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
@@ -287,6 +288,14 @@ namespace densify
     TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
     DoFTools::make_sparsity_pattern(
       dof_handler, sp, AffineConstraints<double>(), false, this_rank);
+    if (use_nodal_averaging(prm))
+      {
+        // couples all DoFs of the cells around each vertex
+        if (!nodal_averaging)
+          nodal_averaging =
+            std::make_unique<NodalAveraging>(dof_handler, *mapping);
+        nodal_averaging->add_sparsity(sp);
+      }
     if (has_particle_contact)
       particle_contact.add_couplings(sp);
     sp.compress();
@@ -391,8 +400,18 @@ namespace densify
     Tensor<4, 3>                     A;
 
     std::string material_failure;
+    // with the locking remedy, its own assembly replaces the cell loop
+    if (nodal_averaging)
+      material_failure =
+        nodal_averaging->assemble(solution_ghosted,
+                                  particle_material,
+                                  has_history ? &committed_history : nullptr,
+                                  has_history ? &trial_history : nullptr,
+                                  residual,
+                                  with_matrix ? &tangent : nullptr);
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && material_failure.empty())
+      if (!nodal_averaging && cell->is_locally_owned() &&
+          material_failure.empty())
         {
           fe_values.reinit(cell);
           fe_values[u].get_function_gradients(solution_ghosted, grad_u);
@@ -1082,6 +1101,8 @@ namespace densify
               << friction_text(prm.contact.friction_coefficient) << ")";
       if (has_history)
         pcout << ", plastic history";
+      if (nodal_averaging)
+        pcout << ", nodal-averaged F-bar (P1 locking remedy)";
       pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
     }
 

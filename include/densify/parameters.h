@@ -39,6 +39,8 @@ namespace densify
     double growth = 0.5;
     /// Polynomial degree of the displacement (1 or 2).
     unsigned int degree = 1;
+    /// "auto", "nodal averaging" (P1 only) or "none".
+    std::string locking_remedy = "auto";
   };
 
   /// Subsection "Material": the constitutive model and the material "custom".

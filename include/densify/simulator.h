@@ -32,6 +32,8 @@
 
 namespace densify
 {
+  class NodalAveraging;
+
   /**
    * Runs one scene: builds the multi-body mesh of all particles, then for each
    * load step moves the upper punch and solves the quasi-static equilibrium
@@ -237,6 +239,9 @@ namespace densify
     /// travel that caused it (for the extrapolating predictor).
     TrilinosWrappers::MPI::Vector last_increment;
     double                        last_punch_increment = 0.;
+
+    /// F-bar with nodal averaging (P1 locking remedy); nullptr when off.
+    std::unique_ptr<NodalAveraging> nodal_averaging;
 
     ToolContact tool_contact;
     /// Particle-particle contact, if there is more than one particle.

@@ -49,6 +49,8 @@ expect "missing particle file" "missing.csv" "$DENSIFY" good.prm \
   --set "Particles/Particle file=missing.csv"
 expect "missing parameter file" "nothing.prm" "$DENSIFY" nothing.prm
 expect "unknown material" "unknown material 'Pb'" "$DENSIFY" good.prm --set "Particles/Materials=Pb"
+expect "locking remedy on P2" "nodal averaging needs Mesh/Polynomial degree = 1" "$DENSIFY" good.prm \
+  --set "Mesh/Polynomial degree=2" --set "Mesh/Volumetric locking remedy=nodal averaging"
 expect "unknown option" "unknown option" "$DENSIFY" good.prm --frobnicate
 expect "bad displacement table" "Displacement history" "$DENSIFY" good.prm \
   --set "Tools/Upper punch/Displacement history=0:0, 0:1"

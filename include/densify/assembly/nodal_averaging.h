@@ -1,0 +1,139 @@
+// F-bar with nodal averaging of the volume ratio for linear tetrahedra: the
+// remedy of volumetric locking under isochoric plastic flow
+// (doc/theory.md, section "Volumetric locking").
+#pragma once
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/mapping.h>
+
+#include <densify/material/material.h>
+#include <densify/parameters.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace densify
+{
+  /**
+   * Whether the scene uses nodal averaging, from Mesh/Volumetric locking
+   * remedy: "nodal averaging" (P1 only), "none", or "auto" (on for P1 with
+   * J2 plasticity). Throws std::runtime_error with a one-line message for
+   * "nodal averaging" with Polynomial degree = 2.
+   */
+  bool
+  use_nodal_averaging(const Parameters &prm);
+
+  /**
+   * Internal forces and tangent of linear tetrahedra with the volume ratio
+   * averaged over vertex patches (Bonet & Burton 1998, "averaged nodal
+   * volume" tetrahedron, written as an F-bar method).
+   *
+   * Each vertex a gets J_a = (current volume of its cell patch) / (reference
+   * volume of the patch) = sum_f V_f J_f / sum_f V_f. A cell e is integrated
+   * with one point per corner (weight V_e / 4, the four points of the P1
+   * quadrature and their history slots), and at corner a the material sees
+   * Fbar = (J_a / J_e)^(1/3) F_e (at small strain: Fbar = F_e +
+   * (J_a - j_e)/3 I with j = 1 + div u). The internal forces are the exact
+   * derivative of sum_e sum_a V_e/4 W(Fbar_ea), and the tangent is their
+   * exact derivative: symmetric when dP/dF is (hyperelastic laws and the
+   * consistent J2 tangent), so CG applies. It couples all DoFs of the cells
+   * around each vertex (add_sparsity()).
+   *
+   * Every rank holds the whole mesh (parallel::shared::Triangulation without
+   * artificial cells) and a solution vector with all DoFs, so the vertex
+   * averages are computed over all cells on every rank; the material is
+   * evaluated on locally owned cells only.
+   */
+  class NodalAveraging
+  {
+  public:
+    /// Precompute shape gradients, volumes and vertex patches of a P1
+    /// vector DoFHandler (FESystem(FE_SimplexP(1), 3)).
+    NodalAveraging(const DoFHandler<3> &dof_handler, const Mapping<3> &mapping);
+
+    /// Add the couplings of all DoFs of the cells around every vertex that
+    /// touches a locally owned cell.
+    void
+    add_sparsity(TrilinosWrappers::SparsityPattern &sparsity) const;
+
+    /**
+     * Add the internal forces at @p solution (which must hold the values of
+     * all DoFs) to @p residual and, if @p tangent is not nullptr, their
+     * derivative to @p tangent. @p materials is indexed by the cells'
+     * material id; @p committed and @p trial hold four states per cell
+     * (index active_cell_index * 4 + vertex), or are nullptr. Returns an
+     * empty string, or the message of the first material failure (e.g. an
+     * inverted element); then the caller must not use the result.
+     */
+    std::string
+    assemble(const TrilinosWrappers::MPI::Vector                &solution,
+             const std::vector<std::shared_ptr<const Material>> &materials,
+             const std::vector<MaterialState>                   *committed,
+             std::vector<MaterialState>                         *trial,
+             TrilinosWrappers::MPI::Vector                      &residual,
+             TrilinosWrappers::SparseMatrix                     *tangent);
+
+  private:
+    /// Fixed data of one cell.
+    struct Cell
+    {
+      /// Reference gradient of shape function i (12 vector DoFs).
+      std::array<Tensor<1, 3>, 12> grad;
+      /// Nonzero component of shape function i.
+      std::array<unsigned int, 12> component;
+      /// Global DoF indices.
+      std::array<types::global_dof_index, 12> dofs;
+      /// Global vertex indices and this cell's slot in each vertex patch.
+      std::array<unsigned int, 4> vertex, slot;
+      /// Reference volume (mm^3).
+      double volume = 0.;
+      /// Material id (index into the materials).
+      unsigned int material = 0;
+      /// Locally owned?
+      bool owned = false;
+    };
+
+    /// The cells around one vertex and the union of their DoFs.
+    struct Patch
+    {
+      std::vector<unsigned int>            cells;
+      std::vector<types::global_dof_index> dofs;
+      /// position[slot][i]: index in dofs of DoF i of cell cells[slot].
+      std::vector<std::array<unsigned int, 12>> position;
+      /// Reference volume of the patch (mm^3).
+      double volume = 0.;
+      /// Some cell of the patch is locally owned.
+      bool touched = false;
+      /// Offset of this patch's DoFs in the flat work arrays.
+      unsigned int offset = 0;
+    };
+
+    /// Kinematics of one cell in the current state.
+    struct CellState
+    {
+      Tensor<2, 3> F;
+      /// Volume measure: det F (finite strain) or 1 + tr(F - I).
+      double j = 1.;
+      /// d j / d u_i.
+      std::array<double, 12> dj;
+      /// F^{-T} grad_i (finite strain), for the geometric terms.
+      std::array<Tensor<1, 3>, 12> h;
+    };
+
+    std::vector<Cell>  cells;
+    std::vector<Patch> patches;
+    /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
+    /// tangent terms; per vertex, the averaged volume measure and the
+    /// scalars S (pressure) and beta.
+    std::vector<double>    U, U_prime;
+    std::vector<double>    j_bar, S, beta;
+    std::vector<CellState> state;
+  };
+} // namespace densify

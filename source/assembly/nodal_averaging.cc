@@ -1,0 +1,361 @@
+// F-bar with nodal averaging of the volume ratio for linear tetrahedra:
+// vertex patches, internal forces and their exact tangent.
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <densify/assembly/nodal_averaging.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace densify
+{
+  bool
+  use_nodal_averaging(const Parameters &prm)
+  {
+    const std::string &remedy = prm.mesh.locking_remedy;
+    if (remedy == "nodal averaging")
+      {
+        if (prm.mesh.degree != 1)
+          throw std::runtime_error(
+            "Mesh/Volumetric locking remedy = nodal averaging needs "
+            "Mesh/Polynomial degree = 1 (quadratic tetrahedra do not lock: "
+            "use none or auto)");
+        return true;
+      }
+    if (remedy == "auto")
+      return prm.mesh.degree == 1 && prm.material.model == "J2 plasticity";
+    return false;
+  }
+
+
+
+  NodalAveraging::NodalAveraging(const DoFHandler<3> &dof_handler,
+                                 const Mapping<3>    &mapping)
+  {
+    const FiniteElement<3> &fe = dof_handler.get_fe();
+    if (fe.n_dofs_per_cell() != 12 || fe.n_components() != 3)
+      throw std::runtime_error(
+        "nodal averaging needs linear tetrahedra (Mesh/Polynomial degree = 1)");
+    const Triangulation<3> &tria = dof_handler.get_triangulation();
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_artificial())
+        throw std::runtime_error(
+          "nodal averaging needs every cell on every MPI rank");
+    {
+      IndexSet relevant;
+      DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+      if (relevant.n_elements() != dof_handler.n_dofs())
+        throw std::runtime_error(
+          "nodal averaging needs the values of all DoFs on every MPI rank");
+    }
+
+    // P1 gradients are constant: one point at the centroid, weight = volume
+    const QGaussSimplex<3> centroid(1);
+    FEValues<3>            fe_values(mapping,
+                          fe,
+                          centroid,
+                          update_gradients | update_JxW_values);
+    cells.resize(tria.n_active_cells());
+    patches.resize(tria.n_vertices());
+    std::vector<types::global_dof_index> dofs(12);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const unsigned int e = cell->active_cell_index();
+        Cell              &c = cells[e];
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < 12; ++i)
+          {
+            c.grad[i]      = fe_values.shape_grad(i, 0);
+            c.component[i] = fe.system_to_component_index(i).first;
+            c.dofs[i]      = dofs[i];
+          }
+        c.volume   = fe_values.JxW(0);
+        c.material = cell->material_id();
+        c.owned    = cell->is_locally_owned();
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            Patch &patch = patches[cell->vertex_index(v)];
+            c.vertex[v]  = cell->vertex_index(v);
+            c.slot[v]    = patch.cells.size();
+            patch.cells.push_back(e);
+            patch.volume += c.volume;
+            patch.touched = patch.touched || c.owned;
+          }
+      }
+
+    unsigned int offset = 0;
+    for (Patch &patch : patches)
+      {
+        for (const unsigned int f : patch.cells)
+          patch.dofs.insert(patch.dofs.end(),
+                            cells[f].dofs.begin(),
+                            cells[f].dofs.end());
+        std::sort(patch.dofs.begin(), patch.dofs.end());
+        patch.dofs.erase(std::unique(patch.dofs.begin(), patch.dofs.end()),
+                         patch.dofs.end());
+        patch.position.resize(patch.cells.size());
+        for (unsigned int slot = 0; slot < patch.cells.size(); ++slot)
+          for (unsigned int i = 0; i < 12; ++i)
+            patch.position[slot][i] =
+              std::lower_bound(patch.dofs.begin(),
+                               patch.dofs.end(),
+                               cells[patch.cells[slot]].dofs[i]) -
+              patch.dofs.begin();
+        patch.offset = offset;
+        offset += patch.dofs.size();
+      }
+    U.resize(offset);
+    U_prime.resize(offset);
+    state.resize(cells.size());
+  }
+
+
+
+  void
+  NodalAveraging::add_sparsity(
+    TrilinosWrappers::SparsityPattern &sparsity) const
+  {
+    for (const Patch &patch : patches)
+      if (patch.touched)
+        for (const types::global_dof_index row : patch.dofs)
+          sparsity.add_entries(row, patch.dofs.begin(), patch.dofs.end(), true);
+  }
+
+
+
+  std::string
+  NodalAveraging::assemble(
+    const TrilinosWrappers::MPI::Vector                &solution,
+    const std::vector<std::shared_ptr<const Material>> &materials,
+    const std::vector<MaterialState>                   *committed,
+    std::vector<MaterialState>                         *trial,
+    TrilinosWrappers::MPI::Vector                      &residual,
+    TrilinosWrappers::SparseMatrix                     *tangent)
+  {
+    const Tensor<2, 3> I = unit_symmetric_tensor<3>();
+
+    // 1. kinematics of every cell (all ranks alike) and the vertex averages
+    //    j_a = sum_f V_f j_f / sum_f V_f
+    j_bar.assign(patches.size(), 0.);
+    for (unsigned int e = 0; e < cells.size(); ++e)
+      {
+        const Cell &c      = cells[e];
+        CellState  &s      = state[e];
+        const bool  finite = materials[c.material]->finite_strain();
+        s.F                = I;
+        for (unsigned int i = 0; i < 12; ++i)
+          s.F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
+        if (finite)
+          {
+            s.j = determinant(s.F);
+            if (!(s.j > 0.))
+              return "nodal averaging: det F = " + std::to_string(s.j) +
+                     " <= 0 (inverted element)";
+            const Tensor<2, 3> F_inv_T = transpose(invert(s.F));
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                s.h[i]  = F_inv_T * c.grad[i];
+                s.dj[i] = s.j * s.h[i][c.component[i]];
+              }
+          }
+        else
+          {
+            s.j = trace(s.F) - 2.;
+            for (unsigned int i = 0; i < 12; ++i)
+              s.dj[i] = c.grad[i][c.component[i]];
+          }
+        for (unsigned int v = 0; v < 4; ++v)
+          j_bar[c.vertex[v]] += c.volume * s.j;
+      }
+    for (unsigned int a = 0; a < patches.size(); ++a)
+      if (patches[a].volume > 0.)
+        j_bar[a] /= patches[a].volume;
+
+    // 2. owned cells: the material at each corner a with Fbar(j_a); the
+    //    cell-local parts of residual and tangent, and per vertex the
+    //    pieces of the patch terms (see doc/theory.md for the derivation)
+    S.assign(patches.size(), 0.);
+    beta.assign(patches.size(), 0.);
+    std::fill(U.begin(), U.end(), 0.);
+    std::fill(U_prime.begin(), U_prime.end(), 0.);
+    FullMatrix<double>                   cell_matrix(12, 12);
+    Vector<double>                       cell_residual(12);
+    std::vector<types::global_dof_index> dofs(12);
+    std::array<double, 12>               t, r, x, x_prime;
+    std::array<Tensor<2, 3>, 12>         A_grad;
+    Tensor<2, 3>                         P;
+    Tensor<4, 3>                         A;
+    for (unsigned int e = 0; e < cells.size(); ++e)
+      {
+        const Cell &c = cells[e];
+        if (!c.owned)
+          continue;
+        const CellState &s        = state[e];
+        const Material  &material = *materials[c.material];
+        const bool       finite   = material.finite_strain();
+        const double     w        = c.volume / 4.;
+        // t_i = d(ln J)/du_i (finite strain) or d(div u)/du_i
+        for (unsigned int i = 0; i < 12; ++i)
+          t[i] = (finite ? s.dj[i] / s.j : s.dj[i]);
+        cell_matrix   = 0;
+        cell_residual = 0;
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            const unsigned int a = c.vertex[v];
+            // Fbar = sc F (finite strain), D the denominator of d(ln j_a)
+            double       sc = 1., D = 1.;
+            Tensor<2, 3> F_bar, N;
+            if (finite)
+              {
+                sc    = std::cbrt(j_bar[a] / s.j);
+                F_bar = sc * s.F;
+                N     = s.F;
+                D     = j_bar[a];
+              }
+            else
+              {
+                F_bar = s.F + (j_bar[a] - s.j) / 3. * I;
+                N     = I;
+              }
+            const std::size_t k = std::size_t(e) * 4 + v;
+            try
+              {
+                material.evaluate(F_bar,
+                                  committed ? &(*committed)[k] : nullptr,
+                                  trial ? &(*trial)[k] : nullptr,
+                                  P,
+                                  A);
+              }
+            catch (const std::exception &error)
+              {
+                return error.what();
+              }
+            // p: Kirchhoff pressure of Fbar (finite) or tr P / 3
+            const double p = sc * scalar_product(P, N) / 3.;
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                r[i] = P[c.component[i]] * c.grad[i];
+                cell_residual(i) += w * (sc * r[i] - p * t[i]);
+              }
+            S[a] += w * p / D;
+            if (tangent == nullptr)
+              continue;
+
+            // A:N, N:A and N:A:N
+            Tensor<2, 3> AN, NA;
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J = 0; J < 3; ++J)
+                for (unsigned int k2 = 0; k2 < 3; ++k2)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    {
+                      AN[i][J] += A[i][J][k2][L] * N[k2][L];
+                      NA[k2][L] += N[i][J] * A[i][J][k2][L];
+                    }
+            const double alpha = scalar_product(NA, N);
+            const double gamma =
+              (finite ? sc * sc * alpha / 9. + p / 3. : alpha / 9.);
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                const double a_i = AN[c.component[i]] * c.grad[i];
+                const double b_i = NA[c.component[i]] * c.grad[i];
+                x[i] =
+                  (finite ? sc * sc / 3. * a_i + sc / 3. * r[i] : a_i / 3.);
+                x_prime[i] =
+                  (finite ? sc * sc / 3. * b_i + sc / 3. * r[i] : b_i / 3.);
+                for (unsigned int k2 = 0; k2 < 3; ++k2)
+                  for (unsigned int J = 0; J < 3; ++J)
+                    A_grad[i][k2][J] = A[k2][J][c.component[i]] * c.grad[i];
+              }
+            const double sc2 = sc * sc;
+            for (unsigned int i = 0; i < 12; ++i)
+              for (unsigned int j = 0; j < 12; ++j)
+                {
+                  double kij = sc2 * (A_grad[j][c.component[i]] * c.grad[i]) -
+                               x[i] * t[j] - t[i] * x_prime[j] +
+                               gamma * t[i] * t[j];
+                  if (finite)
+                    kij += p * s.h[i][c.component[j]] * s.h[j][c.component[i]];
+                  cell_matrix(i, j) += w * kij;
+                }
+            const Patch &patch = patches[a];
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                const unsigned int m =
+                  patch.offset + patch.position[c.slot[v]][i];
+                U[m] += w * (x[i] - gamma * t[i]) / D;
+                U_prime[m] += w * (x_prime[i] - gamma * t[i]) / D;
+              }
+            beta[a] += w * (gamma - (finite ? p : 0.)) / (D * D);
+          }
+        std::copy(c.dofs.begin(), c.dofs.end(), dofs.begin());
+        residual.add(dofs, cell_residual);
+        if (tangent != nullptr)
+          tangent->add(dofs, cell_matrix);
+      }
+
+    // 3. patch terms: with b = d j_a / du (nonzero on all DoFs of the
+    //    patch), the residual gets S_a b and the tangent
+    //    U b^T + b U'^T + beta b b^T + S_a sum_f c_f d^2 J_f
+    std::vector<double> b;
+    Vector<double>      patch_residual;
+    FullMatrix<double>  patch_matrix;
+    for (unsigned int a = 0; a < patches.size(); ++a)
+      {
+        const Patch &patch = patches[a];
+        if (!patch.touched)
+          continue;
+        const unsigned int n = patch.dofs.size();
+        b.assign(n, 0.);
+        for (unsigned int slot = 0; slot < patch.cells.size(); ++slot)
+          {
+            const unsigned int f   = patch.cells[slot];
+            const double       c_f = cells[f].volume / patch.volume;
+            for (unsigned int i = 0; i < 12; ++i)
+              b[patch.position[slot][i]] += c_f * state[f].dj[i];
+          }
+        patch_residual.reinit(n);
+        for (unsigned int i = 0; i < n; ++i)
+          patch_residual(i) = S[a] * b[i];
+        residual.add(patch.dofs, patch_residual);
+        if (tangent == nullptr)
+          continue;
+
+        patch_matrix.reinit(n, n);
+        const double *u  = &U[patch.offset];
+        const double *up = &U_prime[patch.offset];
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            patch_matrix(i, j) =
+              u[i] * b[j] + b[i] * up[j] + beta[a] * b[i] * b[j];
+        // second derivative of j_a (finite strain): d^2 J_f = J_f (t t^T -
+        // T) with T_ij = h_i[c_j] h_j[c_i]
+        for (unsigned int slot = 0; slot < patch.cells.size(); ++slot)
+          {
+            const unsigned int f = patch.cells[slot];
+            if (!materials[cells[f].material]->finite_strain() || S[a] == 0.)
+              continue;
+            const Cell      &cf          = cells[f];
+            const CellState &sf          = state[f];
+            const double     coefficient = S[a] * cf.volume / patch.volume;
+            const auto      &pos         = patch.position[slot];
+            for (unsigned int i = 0; i < 12; ++i)
+              for (unsigned int j = 0; j < 12; ++j)
+                patch_matrix(pos[i], pos[j]) +=
+                  coefficient *
+                  (sf.dj[i] * sf.dj[j] / sf.j -
+                   sf.j * sf.h[i][cf.component[j]] * sf.h[j][cf.component[i]]);
+          }
+        tangent->add(patch.dofs, patch_matrix);
+      }
+    return "";
+  }
+} // namespace densify
