@@ -39,6 +39,16 @@ namespace densify
         "CSV file with one particle per line: x,y,z,diameter[,material] in "
         "mm; '#' starts a comment; a header line is skipped. Relative paths "
         "are relative to the working directory. Empty: use Centres.");
+      prm.add_parameter(
+        "Body force",
+        particles.body_force,
+        "Force per volume 'bx,by,bz' on every particle, in N/mm^3 (gravity: "
+        "0,0,-rho g; 0,0,0 switches it off at no cost).");
+      prm.add_parameter(
+        "Body force history",
+        particles.body_force_history,
+        "Factor on the body force against time, as 't:f, t:f, ...' pairs "
+        "(s:-), linearly interpolated.");
     }
     prm.leave_subsection();
 
@@ -248,6 +258,13 @@ namespace densify
                         "v0 of the arctangent law, in mm/s (> 0): below it "
                         "the traction grows linearly with the velocity.",
                         Patterns::Double(1e-300));
+      prm.add_parameter(
+        "Tangential penalty factor",
+        contact.tangential_penalty_factor,
+        "Stick stiffness of Coulomb friction as a multiple of E/h (> 0): "
+        "a sticking point slips elastically by t h / (factor E). Much "
+        "stiffer than needed slows Newton where points slip.",
+        Patterns::Double(1e-12));
       prm.add_parameter(
         "Friction tangent",
         contact.friction_tangent,

@@ -79,6 +79,16 @@ namespace densify
     scene.punch_table = parse_table(prm.tools.upper_displacement,
                                     "Tools/Upper punch/Displacement history");
 
+    {
+      const std::vector<Point<3>> b =
+        parse_points(prm.particles.body_force, "Particles/Body force");
+      if (b.size() != 1)
+        throw std::runtime_error(
+          "Particles/Body force: give one vector 'bx,by,bz' (N/mm^3)");
+      scene.body_force       = b[0];
+      scene.body_force_table = parse_table(prm.particles.body_force_history,
+                                           "Particles/Body force history");
+    }
     scene.lateral_table =
       parse_table(prm.tools.upper_lateral_displacement,
                   "Tools/Upper punch/Lateral displacement history");

@@ -157,12 +157,14 @@ namespace densify
   void
   Simulator::setup_particles()
   {
-    Scene scene   = build_scene(prm);
-    particles     = std::move(scene.particles);
-    upper_initial = scene.upper_initial;
-    punch_table   = std::move(scene.punch_table);
-    lateral_table = std::move(scene.lateral_table);
-    tool_friction = scene.tool_friction;
+    Scene scene      = build_scene(prm);
+    particles        = std::move(scene.particles);
+    upper_initial    = scene.upper_initial;
+    punch_table      = std::move(scene.punch_table);
+    lateral_table    = std::move(scene.lateral_table);
+    body_force       = scene.body_force;
+    body_force_table = std::move(scene.body_force_table);
+    tool_friction    = scene.tool_friction;
     for (const Particle &p : particles)
       particle_material.push_back(create_material(p.material, prm.material));
   }
@@ -232,6 +234,8 @@ namespace densify
       (prm.contact.friction_model == "arctangent" ? FrictionModel::arctangent :
                                                     FrictionModel::coulomb);
     friction.consistent = (prm.contact.friction_tangent == "consistent");
+    friction.tangential_ratio =
+      prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
     std::vector<FrictionLaw> tool_laws;
     for (const RigidTool &tool : tools)
       {
@@ -473,6 +477,9 @@ namespace densify
                                     material_failure));
       }
 
+    if (body_force.norm() > 0)
+      add_body_force();
+
     AssemblyResult result;
     const double   internal_norm = residual.l2_norm();
     {
@@ -507,6 +514,36 @@ namespace densify
     contact_total += result.particle_contact.normal_force;
     result.reference_norm = std::max(internal_norm, contact_total);
     return result;
+  }
+
+
+
+  void
+  Simulator::add_body_force()
+  {
+    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
+    FEValues<3>                      fe_values(*mapping,
+                          *fe,
+                          quadrature,
+                          update_values | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    const Tensor<1, 3>               b =
+      interpolate(body_force_table, load_time) * body_force;
+    Vector<double>                       cell_residual(fe->n_dofs_per_cell());
+    std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_residual = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              cell_residual(i) -=
+                (b * fe_values[u].value(i, q)) * fe_values.JxW(q);
+          cell->get_dof_indices(dofs);
+          residual.add(dofs, cell_residual);
+        }
+    residual.compress(VectorOperation::add);
   }
 
 
@@ -718,6 +755,7 @@ namespace densify
                              StepStatistics    &s)
   {
     const double upper = upper_punch_position(time);
+    load_time          = time;
     tool_contact.set_tool_position(ToolKind::upper_punch, upper);
     tool_contact.set_tool_translation(
       ToolKind::upper_punch,
@@ -1167,6 +1205,8 @@ namespace densify
         s.max_penetration =
           std::max(contact.max_penetration, results.particles.max_penetration);
         s.particle_contact_force = results.particles.normal_force;
+        s.upper_punch_friction   = contact.friction_force[upper_kind].norm();
+        s.lower_punch_friction   = contact.friction_force[lower_kind].norm();
         s.slipping_points        = contact.n_slip + results.particles.n_slip;
         update_ghosts();
         const std::vector<unsigned int> partners =
@@ -1176,10 +1216,10 @@ namespace densify
         for (const unsigned int n : partners)
           s.contact_pairs += n;
         s.contact_pairs /= 2;
-        const std::vector<unsigned int> die_contact =
-          tool_contact.particles_touching(*mapping,
-                                          solution_ghosted,
-                                          ToolKind::die_wall);
+        const std::vector<double> die_force =
+          tool_contact.particle_forces(*mapping,
+                                       solution_ghosted,
+                                       ToolKind::die_wall);
         const std::vector<ParticleMeasure> measures = measure_particles();
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
@@ -1195,7 +1235,7 @@ namespace densify
                 << measures[p].mean_displacement[2] << ','
                 << measures[p].rotation[0] << ',' << measures[p].rotation[1]
                 << ',' << measures[p].rotation[2] << ',' << partners[p] << ','
-                << die_contact[p] << '\n';
+                << (die_force[p] > 0 ? 1 : 0) << '\n';
             particle_file.flush();
           }
         s.relative_density = density(s.particle_volume, upper);

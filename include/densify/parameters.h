@@ -24,6 +24,10 @@ namespace densify
     std::string materials = "Sn";
     /// CSV file x,y,z,diameter[,material]; relative to the working directory.
     std::string particle_file = "";
+    /// Body force "bx,by,bz" on every particle (N/mm^3), e.g. gravity.
+    std::string body_force = "0,0,0";
+    /// Factor on the body force against time "t:f, ..." (s:-).
+    std::string body_force_history = "0:1";
   };
 
   /// Subsection "Mesh": how each particle is meshed and discretised.
@@ -110,6 +114,8 @@ namespace densify
     /// Sliding velocity below which the arctangent law is nearly stuck
     /// (mm/s).
     double slip_velocity = 0.01;
+    /// Tangential (stick) penalty = factor * E / h (MPa/mm).
+    double tangential_penalty_factor = 1.;
     /// "symmetric" (CG) or "consistent" (needs GMRES or a direct solver).
     std::string friction_tangent = "symmetric";
   };

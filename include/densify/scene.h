@@ -23,6 +23,9 @@ namespace densify
     std::vector<std::pair<double, double>> punch_table;
     /// Sideways (x) upper punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> lateral_table;
+    /// Body force on every particle (N/mm^3) and its factor against time.
+    Tensor<1, 3>                           body_force;
+    std::vector<std::pair<double, double>> body_force_table;
     /// Friction coefficient of each tool, by ToolKind.
     std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
   };

@@ -101,6 +101,22 @@ namespace densify
       return dof_handler.n_dofs();
     }
 
+    /// Normal force (N) of the tool @p kind on each particle now.
+    std::vector<double>
+    particle_tool_forces(const ToolKind kind) const
+    {
+      return tool_contact.particle_forces(*mapping, solution_ghosted, kind);
+    }
+
+    /// Number of particles each particle touches now.
+    std::vector<unsigned int>
+    contact_partners() const
+    {
+      return has_particle_contact ?
+               particle_contact.contact_partners(*mapping, solution_ghosted) :
+               std::vector<unsigned int>(particles.size(), 0);
+    }
+
     /// Rigid translation of each particle: its mean displacement (mm).
     std::vector<Tensor<1, 3>>
     particle_mean_displacements() const;
@@ -249,6 +265,14 @@ namespace densify
     ParticleContact particle_contact;
     /// Search margin of the particle contact (mm).
     double search_margin = 0.;
+    /// Body force (N/mm^3), its factor against time, and the time of the
+    /// load being solved for.
+    Tensor<1, 3>                           body_force;
+    std::vector<std::pair<double, double>> body_force_table;
+    double                                 load_time = 0.;
+    /// Add -int b . phi to the residual (only called if b != 0).
+    void
+    add_body_force();
     /// Sideways upper punch displacement against time.
     std::vector<std::pair<double, double>> lateral_table;
     /// Friction coefficient of each tool, by ToolKind.

@@ -180,9 +180,12 @@ namespace densify
         }
 
     // broad phase: candidate particle pairs; narrow phase trees for the
-    // particles that have a partner
+    // particles that have a partner. Both search a wider margin, whose cell
+    // couplings go into a new matrix pattern when one is needed, so that
+    // the pattern lasts while particles move
+    const double                      wide = pattern_margin_factor * margin;
     const std::vector<CandidatePair> &pairs =
-      broad_search.update(particle_box, margin);
+      broad_search.update(particle_box, wide);
     std::vector<std::vector<unsigned int>> partners(n_particles);
     for (const auto &[a, b] : pairs)
       {
@@ -204,27 +207,35 @@ namespace densify
 
     candidates.clear();
     candidate_start.assign(1, 0);
+    couplings.clear();
+    wide_couplings.clear();
     std::vector<unsigned> hits;
     for (const unsigned int s : slave_faces)
       {
         for (const unsigned int b : partners[facets[s].particle])
           {
             hits.clear();
-            tree(b).query(facet_box[s], margin, hits);
+            tree(b).query(facet_box[s], wide, hits);
             for (const unsigned int h : hits)
               {
-                const unsigned int m = first_facet[b] + h;
-                candidates.push_back(m);
-                couplings.emplace(facets[s].cell->active_cell_index(),
-                                  facets[m].cell->active_cell_index());
+                const unsigned int                  m = first_facet[b] + h;
+                const std::pair<unsigned, unsigned> cells(
+                  facets[s].cell->active_cell_index(),
+                  facets[m].cell->active_cell_index());
+                wide_couplings.insert(cells);
+                if (boxes_overlap(facet_box[s], facet_box[m], margin))
+                  {
+                    candidates.push_back(m);
+                    couplings.insert(cells);
+                  }
               }
           }
         candidate_start.push_back(candidates.size());
       }
-    bool covered = std::includes(pattern_couplings.begin(),
-                                 pattern_couplings.end(),
-                                 couplings.begin(),
-                                 couplings.end());
+    const bool covered = std::includes(pattern_couplings.begin(),
+                                       pattern_couplings.end(),
+                                       couplings.begin(),
+                                       couplings.end());
     return Utilities::MPI::min(covered ? 1 : 0,
                                dof_handler->get_communicator()) == 1;
   }
@@ -234,8 +245,7 @@ namespace densify
   void
   ParticleContact::add_couplings(TrilinosWrappers::SparsityPattern &pattern)
   {
-    pattern_couplings.insert(couplings.begin(), couplings.end());
-    couplings = pattern_couplings;
+    pattern_couplings.insert(wide_couplings.begin(), wide_couplings.end());
     std::vector<DoFHandler<3>::active_cell_iterator> cell_of(
       dof_handler->get_triangulation().n_active_cells());
     for (const Facet &facet : facets)
@@ -421,7 +431,7 @@ namespace densify
                                        friction_on ? committed_traction[idx] :
                                                      Tensor<1, 3>(),
                                        delta,
-                                       eps,
+                                       friction.tangential_ratio * eps,
                                        friction);
                 const double p = r.pressure;
                 if (out.new_lambda != nullptr)

@@ -173,7 +173,7 @@ namespace densify
                   n,
                   rough ? committed_traction[idx] : Tensor<1, 3>(),
                   delta,
-                  eps,
+                  (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
                   rough ? friction_laws[t] : FrictionLaw());
                 const double p = r.pressure;
                 if (out.new_lambda != nullptr)
@@ -209,8 +209,9 @@ namespace densify
                     continue;
                   }
                 const Tensor<1, 3> traction = p * n + r.traction;
-                if (out.touching != nullptr && tool.kind == out.touching_kind)
-                  (*out.touching)[cell->material_id()] = 1;
+                if (out.particle_force != nullptr &&
+                    tool.kind == out.force_kind)
+                  (*out.particle_force)[cell->material_id()] += p * JxW;
                 p_sum += p;
                 if (rough)
                   {
@@ -353,18 +354,18 @@ namespace densify
 
 
 
-  std::vector<unsigned int>
-  ToolContact::particles_touching(const Mapping<3>                    &mapping,
-                                  const TrilinosWrappers::MPI::Vector &solution,
-                                  const ToolKind kind) const
+  std::vector<double>
+  ToolContact::particle_forces(const Mapping<3>                    &mapping,
+                               const TrilinosWrappers::MPI::Vector &solution,
+                               const ToolKind                       kind) const
   {
-    std::vector<unsigned int> touching(penalty.size(), 0);
-    Outputs                   out;
-    out.touching      = &touching;
-    out.touching_kind = kind;
+    std::vector<double> force(penalty.size(), 0.);
+    Outputs             out;
+    out.particle_force = &force;
+    out.force_kind     = kind;
     loop(mapping, solution, out);
-    Utilities::MPI::max(touching, dof_handler->get_communicator(), touching);
-    return touching;
+    Utilities::MPI::sum(force, dof_handler->get_communicator(), force);
+    return force;
   }
 
 

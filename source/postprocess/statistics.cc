@@ -25,7 +25,8 @@ namespace densify
            "linear_iterations,wall_seconds,die_wall_radial_force,"
            "stabilisation_force,max_penetration,augmentations,"
            "particle_volume,step_seconds,increments,cutbacks,"
-           "particle_contact_force,contact_pairs,slipping_points";
+           "particle_contact_force,contact_pairs,slipping_points,"
+           "upper_punch_friction,lower_punch_friction";
   }
 
 
@@ -45,6 +46,7 @@ namespace densify
         << std::setprecision(4) << s.step_seconds << ',' << s.increments << ','
         << s.cutbacks << ',' << std::setprecision(10)
         << s.particle_contact_force << ',' << s.contact_pairs << ','
-        << s.slipping_points << std::endl;
+        << s.slipping_points << ',' << s.upper_punch_friction << ','
+        << s.lower_punch_friction << std::endl;
   }
 } // namespace densify

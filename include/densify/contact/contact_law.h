@@ -33,6 +33,8 @@ namespace densify
     FrictionModel model = FrictionModel::coulomb;
     /// Regularisation slip delta of the arctangent law (mm per increment).
     double regularisation = 1e-4;
+    /// Tangential (stick) penalty as a fraction of the normal penalty.
+    double tangential_ratio = 1.;
     /// Keep the nonsymmetric coupling of the slip traction with the
     /// pressure in the tangent (needs a nonsymmetric linear solver).
     bool consistent = false;

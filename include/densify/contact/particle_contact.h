@@ -115,8 +115,9 @@ namespace densify
     update_search(const TrilinosWrappers::MPI::Vector &solution,
                   const double                         margin);
 
-    /// Add the slave-master cell couplings of the current candidates (and
-    /// of every earlier call) to @p pattern.
+    /// Add the slave-master cell couplings of the facets within
+    /// pattern_margin_factor times the search margin at the last
+    /// update_search() (and of every earlier call) to @p pattern.
     void
     add_couplings(TrilinosWrappers::SparsityPattern &pattern);
 
@@ -248,6 +249,10 @@ namespace densify
     /// Cell couplings (active cell indices) of the candidates, and those of
     /// the pattern made last.
     std::set<std::pair<unsigned, unsigned>> couplings, pattern_couplings;
+    /// Cell couplings within pattern_margin_factor times the search margin.
+    std::set<std::pair<unsigned, unsigned>> wide_couplings;
+    /// How much wider than the search margin the pattern couplings reach.
+    static constexpr double pattern_margin_factor = 4.;
 
     BroadSearch            broad_search;
     std::vector<FacetTree> trees;

@@ -113,12 +113,12 @@ namespace densify
         law.regularisation = delta;
     }
 
-    /// Which particles (by index) touch the tool @p kind at @p solution:
-    /// 1 or 0, on every rank.
-    std::vector<unsigned int>
-    particles_touching(const Mapping<3>                    &mapping,
-                       const TrilinosWrappers::MPI::Vector &solution,
-                       const ToolKind                       kind) const;
+    /// Normal force (N) of the tool @p kind on each particle (by index) at
+    /// @p solution, on every rank; > 0 where the particle touches the tool.
+    std::vector<double>
+    particle_forces(const Mapping<3>                    &mapping,
+                    const TrilinosWrappers::MPI::Vector &solution,
+                    const ToolKind                       kind) const;
 
     /// The enabled tools.
     const std::vector<RigidTool> &
@@ -221,8 +221,8 @@ namespace densify
       std::vector<double>            *new_slip       = nullptr;
       const DoFHandler<3>            *post           = nullptr;
       SurfaceFieldSums               *sums           = nullptr;
-      std::vector<unsigned int>      *touching       = nullptr;
-      ToolKind                        touching_kind  = ToolKind::die_wall;
+      std::vector<double>            *particle_force = nullptr;
+      ToolKind                        force_kind     = ToolKind::die_wall;
     };
 
     /// One pass over all contact quadrature points; the core of the class.

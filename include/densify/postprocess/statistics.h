@@ -53,6 +53,9 @@ namespace densify
     unsigned int contact_pairs = 0;
     /// Number of contact quadrature points that slip (tools and particles).
     unsigned int slipping_points = 0;
+    /// Friction (tangential) force of the upper and of the lower punch on
+    /// the particles (N, magnitude).
+    double upper_punch_friction = 0., lower_punch_friction = 0.;
   };
 
   /**

@@ -1,0 +1,67 @@
+// Two equal elastic spheres stacked between frictionless punches
+// (prm/hertz.prm's mesh) follow Hertz: the sphere-sphere contact has
+// R* = R/2, E* = E / (2 (1 - nu^2)) and indents twice as deep as each punch
+// contact, so the punch travel is delta = 2 d_punch + d_spheres = 4 d_punch
+// and F = 4/3 E/(1 - nu^2) sqrt(R) (delta/4)^(3/2), within 3 %. A die
+// 0.05 mm wider than the spheres keeps the stack from buckling sideways
+// (frictionless, it takes no axial force).
+#include <deal.II/base/mpi.h>
+
+#include <densify/simulator.h>
+
+#include "test_utilities.h"
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+int
+main(int argc, char **argv)
+{
+  using namespace densify;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool       root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  Parameters       parameters;
+  ParameterHandler prm;
+  testing::read_scene(parameters,
+                      prm,
+                      "hertz.prm",
+                      {"Output/Directory=output",
+                       "Output/Interval=0",
+                       "Particles/Centres=0,0,1.25; 0,0,3.75",
+                       "Tools/Die wall/Enabled=true",
+                       "Tools/Die wall/Diameter=2.55",
+                       "Tools/Upper punch/Displacement history=0:0, 1:0.048"});
+  Simulator simulator(parameters, MPI_COMM_WORLD, false);
+  simulator.run();
+
+  const double E = 43120., nu = 0.3, R = 1.25;
+  const double E_star = E / (1 - nu * nu);
+  bool         ok     = true;
+  if (root)
+    std::cout << "delta/R  F_fem  F_hertz  error_in_percent" << std::endl;
+  for (const StepStatistics &s : simulator.statistics())
+    {
+      const double delta = s.punch_displacement;
+      const double F_hertz =
+        4. / 3. * E_star * std::sqrt(R) * std::pow(delta / 4, 1.5);
+      const double error = (s.upper_punch_force - F_hertz) / F_hertz;
+      // the spheres carry the punch force between them
+      const double transmitted =
+        std::abs(s.particle_contact_force - s.upper_punch_force) /
+        s.upper_punch_force;
+      ok = ok && std::abs(error) < 0.03 && transmitted < 1e-3 &&
+           std::abs(s.upper_punch_force - s.lower_punch_force) <
+             1e-6 * s.upper_punch_force;
+      if (root)
+        std::cout << std::setprecision(6) << delta / R << ' '
+                  << s.upper_punch_force << ' ' << F_hertz << ' '
+                  << std::setprecision(3) << 100 * error
+                  << "  sphere-sphere force = punch force to 1e-3: "
+                  << (transmitted < 1e-3 ? "yes" : "NO") << std::endl;
+    }
+  if (root)
+    std::cout << (ok ? "particle_hertz: within 3 %" : "particle_hertz: FAILED")
+              << std::endl;
+  return ok ? 0 : 1;
+}

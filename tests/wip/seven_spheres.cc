@@ -1,0 +1,118 @@
+// Seven elastic spheres in one hexagonal layer in a die (prm/
+// seven_spheres_sn.prm, shrunk), every neighbour touching at one point at
+// the start, plus a small particle floating in a gap between the outer
+// spheres and the die wall. With friction 0.2: upper punch force = lower
+// punch force + die-wall friction to 1e-6, the six outer spheres carry equal
+// punch forces, the centre sphere touches all six, the floating particle
+// does not move. Frictionless: the same converges and no particle drifts
+// sideways (the centre stays, the outer ones move radially).
+#include <deal.II/base/mpi.h>
+
+#include <densify/simulator.h>
+
+#include "test_utilities.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+namespace
+{
+  using namespace densify;
+
+  void
+  run(const double mu, const bool root)
+  {
+    Parameters       parameters;
+    ParameterHandler prm;
+    testing::read_scene(
+      parameters,
+      prm,
+      "../tests/wip/seven_spheres_sn.prm",
+      {"Output/Directory=output_mu" + std::to_string(mu),
+       "Output/Interval=0",
+       "Material/Model=elastic",
+       "Material/Finite strain=false",
+       // refined where the spheres touch the tools and each other
+       "Mesh/Element size=0.5",
+       "Mesh/Refinement directions=0,0,1; 0,0,-1; 1,0,0; 0.5,0.8660254,0; "
+       "-0.5,0.8660254,0; -1,0,0; -0.5,-0.8660254,0; 0.5,-0.8660254,0",
+       "Mesh/Refined element size=0.12",
+       "Mesh/Refinement growth=0.5",
+       // the seven, and a small particle floating near the die wall
+       "Particles/Centres=0,0,1.25; 2.5,0,1.25; 1.25,2.1650635094610964,1.25; "
+       "-1.25,2.1650635094610964,1.25; -2.5,0,1.25; "
+       "-1.25,-2.1650635094610964,1.25; 1.25,-2.1650635094610964,1.25; "
+       "2.98779,1.725,0.3",
+       "Particles/Diameters=2.5,2.5,2.5,2.5,2.5,2.5,2.5,0.5",
+       "Tools/Upper punch/Displacement history=0:0, 1:0.06",
+       "Time stepping/Number of steps=3",
+       "Contact/Friction coefficient=" + std::to_string(mu)});
+    Simulator simulator(parameters, MPI_COMM_WORLD, false);
+    simulator.run();
+
+    std::ostringstream out;
+    out << "friction " << mu << ":" << std::endl;
+    double worst_balance = 0;
+    for (const StepStatistics &s : simulator.statistics())
+      worst_balance =
+        std::max(worst_balance,
+                 std::abs(s.upper_punch_force - s.lower_punch_force -
+                          s.die_wall_force) /
+                   s.upper_punch_force);
+    const StepStatistics &last = simulator.statistics().back();
+    out << "  upper = lower + die wall to 1e-6: "
+        << testing::yes(worst_balance < 1e-6) << std::endl
+        << "  particle contacts: " << last.contact_pairs << " pairs, "
+        << std::setprecision(4) << last.particle_contact_force << " N"
+        << std::endl;
+
+    // the six outer spheres carry equal punch forces
+    const std::vector<double> force =
+      simulator.particle_tool_forces(ToolKind::upper_punch);
+    const double f_min =
+      *std::min_element(force.begin() + 1, force.begin() + 7);
+    const double f_max =
+      *std::max_element(force.begin() + 1, force.begin() + 7);
+    out << "  outer punch forces " << f_min << " .. " << f_max
+        << " N, equal within 1 %: "
+        << testing::yes(f_max - f_min < 0.01 * f_max) << std::endl;
+    const std::vector<unsigned int> partners = simulator.contact_partners();
+    out << "  contact partners of the centre sphere: " << partners[0]
+        << ", of the floating particle: " << partners[7] << std::endl;
+    testing::yes(partners[0] == 6 && partners[7] == 0);
+
+    // drift: the centre and the floating particle stay, the outer spheres
+    // move radially
+    const std::vector<Tensor<1, 3>> u = simulator.particle_mean_displacements();
+    const std::vector<Particle>    &p = simulator.get_particles();
+    double centre_drift = std::hypot(u[0][0], u[0][1]), tangential = 0;
+    for (unsigned int i = 1; i < 7; ++i)
+      {
+        const Tensor<1, 3> radial(
+          {p[i].centre[0] / 2.5, p[i].centre[1] / 2.5, 0.});
+        tangential =
+          std::max(tangential,
+                   std::abs(u[i][0] * radial[1] - u[i][1] * radial[0]));
+      }
+    out << "  centre sphere drift < 1e-6 mm: "
+        << testing::yes(centre_drift < 1e-6)
+        << ", outer spheres' sideways drift < 1e-6 mm: "
+        << testing::yes(tangential < 1e-6) << std::endl
+        << "  floating particle moves < 1e-9 mm: "
+        << testing::yes(u[7].norm() < 1e-9) << std::endl;
+    if (root)
+      std::cout << out.str();
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  run(0.2, root);
+  run(0., root);
+  return densify::testing::all_passed ? 0 : 1;
+}
