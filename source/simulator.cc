@@ -247,6 +247,7 @@ namespace densify
                                      timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
     setup_stabilisation();
+    setup_pole_springs();
   }
 
 
@@ -408,6 +409,7 @@ namespace densify
                                              with_matrix ? &tangent : nullptr,
                                              tangent_margin);
     }
+    last_pole_force = add_pole_springs(with_matrix);
     residual.compress(VectorOperation::add);
     if (with_matrix)
       {
@@ -440,8 +442,10 @@ namespace densify
 
     unsigned int   linear_iterations = 0;
     AssemblyResult current           = assemble(true, margin);
+    residual_history.clear();
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
+        residual_history.push_back(current.residual_norm);
         const double target = std::max(tol * current.reference_norm, floor);
         if (prm.output.verbose)
           pcout << "    newton " << it << ": |R| = " << std::scientific
@@ -502,6 +506,10 @@ namespace densify
             ": the residual became NaN or infinite; try more steps "
             "(Time stepping/Number of steps) or a smaller Contact/Penalty "
             "factor");
+        if (prm.output.verbose)
+          pcout << "      line search: max|du| " << std::setprecision(3)
+                << max_step << " mm, step " << s << ", "
+                << trial.contact.n_active << " contact points" << std::endl;
         current = have_matrix ? trial : assemble(true);
       }
     std::ostringstream msg;
@@ -1018,6 +1026,7 @@ namespace densify
         s.die_wall_radial_force = contact.normal_force[die_kind];
         s.stabilisation_force   = last_stabilisation_force;
         s.max_penetration       = contact.max_penetration;
+        s.pole_force            = last_pole_force;
         const std::vector<ParticleMeasure> measures = measure_particles();
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
@@ -1054,6 +1063,8 @@ namespace densify
               << s.upper_punch_force << " N  F_lower " << s.lower_punch_force
               << " N  F_die " << s.die_wall_radial_force << " N  F_stab "
               << std::setprecision(2) << s.stabilisation_force << " N";
+        if (prm.contact.hold_poles)
+          pcout << "  F_pole " << std::setprecision(2) << s.pole_force << " N";
         if (has_density)
           pcout << "  density " << std::setprecision(4)
                 << 100 * s.relative_density << " %";

@@ -93,6 +93,10 @@ namespace densify
     double gap_tolerance = 1e-4;
     /// Maximum multiplier updates per step.
     unsigned int max_augmentations = 20;
+    /// Hold the top and bottom pole vertices of every particle on its
+    /// vertical axis by horizontal springs (frictionless single-particle
+    /// scenes; doc/theory.md).
+    bool hold_poles = false;
   };
 
   /// Subsection "Time stepping": load steps.

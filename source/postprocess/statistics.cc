@@ -24,7 +24,7 @@ namespace densify
            "die_wall_force,relative_density,newton_iterations,"
            "linear_iterations,wall_seconds,die_wall_radial_force,"
            "stabilisation_force,max_penetration,augmentations,"
-           "particle_volume,step_seconds,increments,cutbacks";
+           "particle_volume,step_seconds,increments,cutbacks,pole_force";
   }
 
 
@@ -42,6 +42,6 @@ namespace densify
         << s.max_penetration << ',' << s.augmentations << ','
         << std::setprecision(10) << s.particle_volume << ','
         << std::setprecision(4) << s.step_seconds << ',' << s.increments << ','
-        << s.cutbacks << std::endl;
+        << s.cutbacks << ',' << s.pole_force << std::endl;
   }
 } // namespace densify

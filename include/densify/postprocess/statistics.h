@@ -47,6 +47,9 @@ namespace densify
     unsigned int increments = 0;
     /// Increments rolled back and retried with half the size.
     unsigned int cutbacks = 0;
+    /// l2 norm of the horizontal forces of the pole springs (N; 0 unless
+    /// Contact/Hold poles on axis).
+    double pole_force = 0.;
   };
 
   /**
