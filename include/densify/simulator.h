@@ -80,6 +80,20 @@ namespace densify
       return residual_history;
     }
 
+    /// The DoF handler of the displacement.
+    const DoFHandler<3> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+
+    /// The displacement vector (mm; locally owned entries).
+    const TrilinosWrappers::MPI::Vector &
+    displacement() const
+    {
+      return solution;
+    }
+
     /// Statistics of the steps done so far.
     const std::vector<StepStatistics> &
     statistics() const
