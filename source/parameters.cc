@@ -272,6 +272,18 @@ namespace densify
         "the pressure (CG works); 'consistent': with it (quadratic Newton "
         "near slip, needs Solver/Linear solver = gmres-amg or direct).",
         Patterns::Selection("symmetric|consistent"));
+      prm.add_parameter(
+        "Hold poles on axis",
+        contact.hold_poles,
+        "true: horizontal springs (stiffness Penalty factor * E * h, in both "
+        "residual and tangent) hold the top and bottom pole vertices of every "
+        "particle on the vertical line through its centre. For frictionless "
+        "scenes whose exact solution is axisymmetric (one sphere between "
+        "punches): at finite strain a faceted sphere can otherwise turn a "
+        "facet towards a punch at no cost, and its tipping makes Newton "
+        "stall (doc/roadmap.md). The springs' force is reported as "
+        "pole_force in statistics.csv and in the log; it vanishes for an "
+        "axisymmetric state. false: no springs.");
     }
     prm.leave_subsection();
 

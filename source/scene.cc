@@ -117,6 +117,21 @@ namespace densify
           }
         scene.tool_friction[t] = mu;
       }
+    if (prm.contact.hold_poles)
+      {
+        bool rough = false;
+        for (const double mu : scene.tool_friction)
+          rough = rough || mu > 0;
+        if (rough)
+          throw std::runtime_error(
+            "Contact/Hold poles on axis is for frictionless scenes: set "
+            "Contact/Friction coefficient = 0 (and no tool Friction "
+            "coefficient above 0), or switch it off");
+        if (scene.particles.size() > 1)
+          throw std::runtime_error(
+            "Contact/Hold poles on axis is for a single particle: switch it "
+            "off in scenes with several particles");
+      }
     if (prm.contact.friction_tangent == "consistent" &&
         prm.solver.linear_solver == "cg-amg")
       throw std::runtime_error(

@@ -308,6 +308,7 @@ namespace densify
     setup_stabilisation();
     if (linear_solver)
       linear_solver->rebuild_preconditioner();
+    setup_pole_springs();
   }
 
 
@@ -500,6 +501,7 @@ namespace densify
                                     with_matrix ? &tangent : nullptr,
                                     tangent_margin);
       }
+    last_pole_force = add_pole_springs(with_matrix);
     residual.compress(VectorOperation::add);
     if (with_matrix)
       {
@@ -564,8 +566,10 @@ namespace densify
     unsigned int   linear_iterations = 0;
     AssemblyResult current           = assemble(true, margin);
     double         line_search_step  = 1.;
+    residual_history.clear();
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
+        residual_history.push_back(current.residual_norm);
         const double target = std::max(tol * current.reference_norm, floor);
         if (prm.output.verbose)
           pcout << "    newton " << it << ": |R| = " << std::scientific
@@ -631,6 +635,10 @@ namespace densify
             ": the residual became NaN or infinite; try more steps "
             "(Time stepping/Number of steps) or a smaller Contact/Penalty "
             "factor");
+        if (prm.output.verbose)
+          pcout << "      line search: max|du| " << std::setprecision(3)
+                << max_step << " mm, step " << s << ", "
+                << trial.contact.n_active << " contact points" << std::endl;
         current          = have_matrix ? trial : assemble(true);
         line_search_step = s;
       }
@@ -1220,6 +1228,7 @@ namespace densify
           tool_contact.particle_forces(*mapping,
                                        solution_ghosted,
                                        ToolKind::die_wall);
+        s.pole_force                                = last_pole_force;
         const std::vector<ParticleMeasure> measures = measure_particles();
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
@@ -1257,6 +1266,8 @@ namespace densify
               << s.upper_punch_force << " N  F_lower " << s.lower_punch_force
               << " N  F_die " << s.die_wall_radial_force << " N  F_stab "
               << std::setprecision(2) << s.stabilisation_force << " N";
+        if (prm.contact.hold_poles)
+          pcout << "  F_pole " << std::setprecision(2) << s.pole_force << " N";
         if (has_density)
           pcout << "  density " << std::setprecision(4)
                 << 100 * s.relative_density << " %";

@@ -118,6 +118,10 @@ namespace densify
     double tangential_penalty_factor = 1.;
     /// "symmetric" (CG) or "consistent" (needs GMRES or a direct solver).
     std::string friction_tangent = "symmetric";
+    /// Hold the top and bottom pole vertices of every particle on its
+    /// vertical axis by horizontal springs (frictionless single-particle
+    /// scenes; doc/theory.md).
+    bool hold_poles = false;
   };
 
   /// Subsection "Time stepping": load steps.

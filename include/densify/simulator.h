@@ -76,6 +76,28 @@ namespace densify
         log_file << line << std::endl;
     }
 
+    /// l2 norm of the residual after each Newton iteration of the last
+    /// Newton solve (N), starting with the initial residual.
+    const std::vector<double> &
+    newton_residuals() const
+    {
+      return residual_history;
+    }
+
+    /// The DoF handler of the displacement.
+    const DoFHandler<3> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+
+    /// The displacement vector (mm; locally owned entries).
+    const TrilinosWrappers::MPI::Vector &
+    displacement() const
+    {
+      return solution;
+    }
+
     /// Statistics of the steps done so far.
     const std::vector<StepStatistics> &
     statistics() const
@@ -212,6 +234,23 @@ namespace densify
     void
     update_ghosts();
 
+    /// Find the locally owned horizontal DoFs of the pole vertices of every
+    /// particle (Contact/Hold poles on axis); called by setup_system().
+    void
+    setup_pole_springs();
+
+    /// Add the pole springs to the residual (and to the tangent if
+    /// @p with_matrix); returns the l2 norm of their forces (N), on every
+    /// rank. Does nothing without Contact/Hold poles on axis.
+    double
+    add_pole_springs(const bool with_matrix);
+
+    /// Locally owned horizontal DoFs of the pole vertices and the spring
+    /// stiffness of each (N/mm).
+    std::vector<std::pair<types::global_dof_index, double>> pole_springs;
+    /// Force of the pole springs at the last converged state (N).
+    double last_pole_force = 0.;
+
     const Parameters             &prm;
     MPI_Comm                      comm;
     const unsigned int            this_rank;
@@ -280,7 +319,9 @@ namespace densify
     std::unique_ptr<LinearSolver>    linear_solver;
     double                           last_stabilisation_force = 0.;
 
-    std::vector<StepStatistics>       step_statistics;
+    std::vector<StepStatistics> step_statistics;
+    /// See newton_residuals().
+    std::vector<double>               residual_history;
     std::unique_ptr<StatisticsWriter> statistics_writer;
     /// particles.csv: per particle and step, volume and mean displacement.
     std::ofstream particle_file;

@@ -26,7 +26,7 @@ namespace densify
            "stabilisation_force,max_penetration,augmentations,"
            "particle_volume,step_seconds,increments,cutbacks,"
            "particle_contact_force,contact_pairs,slipping_points,"
-           "upper_punch_friction,lower_punch_friction";
+           "upper_punch_friction,lower_punch_friction,pole_force";
   }
 
 
@@ -47,6 +47,6 @@ namespace densify
         << s.cutbacks << ',' << std::setprecision(10)
         << s.particle_contact_force << ',' << s.contact_pairs << ','
         << s.slipping_points << ',' << s.upper_punch_friction << ','
-        << s.lower_punch_friction << std::endl;
+        << s.lower_punch_friction << ',' << s.pole_force << std::endl;
   }
 } // namespace densify

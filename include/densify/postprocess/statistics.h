@@ -56,6 +56,9 @@ namespace densify
     /// Friction (tangential) force of the upper and of the lower punch on
     /// the particles (N, magnitude).
     double upper_punch_friction = 0., lower_punch_friction = 0.;
+    /// l2 norm of the horizontal forces of the pole springs (N; 0 unless
+    /// Contact/Hold poles on axis).
+    double pole_force = 0.;
   };
 
   /**
