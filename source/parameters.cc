@@ -40,6 +40,18 @@ namespace densify
         "mm; '#' starts a comment; a header line is skipped. Relative paths "
         "are relative to the working directory. Empty: use Centres.");
       prm.add_parameter(
+        "Material fractions",
+        particles.material_fractions,
+        "A mixture 'name:fraction, name:fraction, ...' (fractions >= 0, "
+        "summing to 1): that share of the particles (rounded to whole "
+        "particles) gets each material, drawn at random with Material seed. "
+        "Overrides Materials and the particle file's material column. "
+        "Empty: no mixture.");
+      prm.add_parameter("Material seed",
+                        particles.material_seed,
+                        "Seed of the random draw of Material fractions (the "
+                        "same seed gives the same mixture).");
+      prm.add_parameter(
         "Body force",
         particles.body_force,
         "Force per volume 'bx,by,bz' on every particle, in N/mm^3 (gravity: "

@@ -6,11 +6,78 @@
 #include <densify/material/factory.h>
 #include <densify/scene.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 
 namespace densify
 {
+  void
+  draw_materials(const std::string     &fractions,
+                 const unsigned int     seed,
+                 std::vector<Particle> &particles)
+  {
+    const std::string what = "Particles/Material fractions";
+    std::vector<std::pair<std::string, double>> mixture;
+    double                                      sum = 0;
+    for (const std::string &item : Utilities::split_string_list(fractions, ','))
+      {
+        const std::vector<std::string> parts =
+          Utilities::split_string_list(item, ':');
+        double f = -1;
+        if (parts.size() == 2)
+          try
+            {
+              f = Utilities::string_to_double(parts[1]);
+            }
+          catch (...)
+            {}
+        if (!(f >= 0))
+          throw std::runtime_error(what + ": '" + item +
+                                   "' is not 'name:fraction' with a fraction "
+                                   ">= 0");
+        mixture.emplace_back(parts[0], f);
+        sum += f;
+      }
+    if (std::abs(sum - 1) > 1e-6)
+      throw std::runtime_error(what + ": the fractions add up to " +
+                               std::to_string(sum) + ", not 1");
+    // whole particles per material: floor, then the largest remainders
+    const unsigned int        n = particles.size();
+    std::vector<unsigned int> count(mixture.size());
+    std::vector<unsigned int> order(mixture.size());
+    unsigned int              given = 0;
+    for (unsigned int k = 0; k < mixture.size(); ++k)
+      {
+        count[k] = static_cast<unsigned int>(std::floor(mixture[k].second * n));
+        given += count[k];
+        order[k] = k;
+      }
+    std::stable_sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+      return mixture[a].second * n - count[a] >
+             mixture[b].second * n - count[b];
+    });
+    for (unsigned int k = 0; given < n; ++k, ++given)
+      ++count[order[k % order.size()]];
+    // which particle gets which: a seeded shuffle
+    std::vector<unsigned int> index(n);
+    std::iota(index.begin(), index.end(), 0u);
+    std::mt19937 generator(seed);
+    for (unsigned int i = n; i > 1; --i)
+      std::swap(index[i - 1],
+                index[std::uniform_int_distribution<unsigned int>(0, i - 1)(
+                  generator)]);
+    unsigned int next = 0;
+    for (unsigned int k = 0; k < mixture.size(); ++k)
+      for (unsigned int c = 0; c < count[k]; ++c)
+        particles[index[next++]].material = mixture[k].first;
+  }
+
+
+
   Scene
   build_scene(const Parameters &prm)
   {
@@ -58,6 +125,8 @@ namespace densify
     if (particles.empty())
       throw std::runtime_error(
         "no particles: set Particles/Centres or Particles/Particle file");
+    if (!pp.material_fractions.empty())
+      draw_materials(pp.material_fractions, pp.material_seed, particles);
 
     // the upper punch starts on the highest particle unless told otherwise
     double top = -std::numeric_limits<double>::max();

@@ -24,6 +24,11 @@ namespace densify
     std::string materials = "Sn";
     /// CSV file x,y,z,diameter[,material]; relative to the working directory.
     std::string particle_file = "";
+    /// Mixture "name:fraction, ..." drawn over the particles (overrides the
+    /// materials when not empty).
+    std::string material_fractions = "";
+    /// Seed of that draw.
+    unsigned int material_seed = 1;
     /// Body force "bx,by,bz" on every particle (N/mm^3), e.g. gravity.
     std::string body_force = "0,0,0";
     /// Factor on the body force against time "t:f, ..." (s:-).

@@ -37,4 +37,16 @@ namespace densify
    */
   Scene
   build_scene(const Parameters &prm);
+
+  /**
+   * Give the particles the materials of the mixture @p fractions
+   * ("name:fraction, ..."; fractions >= 0 summing to 1): round(fraction * N)
+   * particles each (largest remainders first), which ones drawn by a shuffle
+   * seeded with @p seed. Throws std::runtime_error with a one-line message on
+   * bad input.
+   */
+  void
+  draw_materials(const std::string     &fractions,
+                 const unsigned int     seed,
+                 std::vector<Particle> &particles);
 } // namespace densify

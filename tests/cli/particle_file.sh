@@ -22,6 +22,15 @@ sed -n 3p out/particles.csv | grep -q '^1,1,Cu,'
 # the upper punch starts on the highest particle (z = 2) and touches only it
 tail -n 1 out/statistics.csv | cut -d, -f4 | grep -qv '^0$'
 echo ok
+# a mixture drawn by fraction overrides the file's materials: one of each
+"$DENSIFY" "$SOURCE_DIR/prm/default.prm" \
+  --set "Particles/Particle file=input/particles.csv" \
+  --set "Particles/Material fractions=Fe:0.5, Cu:0.5" \
+  --set "Output/Directory=out_mix" --set "Output/Interval=0" \
+  --set "Mesh/Element size=0.5" --set "Time stepping/Number of steps=1" \
+  --set "Tools/Upper punch/Displacement history=0:0, 1:0.01" > mix.txt
+[ "$(cut -d, -f3 out_mix/particles.csv | sort | tr '\n' ' ')" = "Cu Fe material " ]
+echo ok
 # touching particles: particle-particle contact is on, and the run reports
 # contact partners per particle
 "$DENSIFY" "$SOURCE_DIR/prm/default.prm" \
