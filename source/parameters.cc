@@ -117,15 +117,16 @@ namespace densify
         "small-strain linear or finite-strain Hencky) or J2 plasticity "
         "(finite-strain von Mises elastoplasticity, Simo 1992; "
         "doc/theory.md). The material of each particle (Sn, Fe, Cu, custom) "
-        "gives E, nu and the yield stress. EXPERIMENTAL: J2 plasticity "
-        "(and Finite strain = true) is verified at the material point but "
-        "not yet robust under contact (doc/roadmap.md).",
+        "gives E, nu and the yield stress. J2 plasticity needs Finite strain "
+        "= true; a single particle between punches is robust (poles held, "
+        "prm/single_sphere_sn.prm), assemblies of touching particles are "
+        "not yet (doc/roadmap.md).",
         Patterns::Selection("elastic|J2 plasticity"));
       prm.add_parameter(
         "Finite strain",
         material.finite_strain,
         "true: finite-strain kinematics (large rotations, Hencky strain); "
-        "EXPERIMENTAL, see Model. false: small-strain linear elasticity, for "
+        "see Model. false: small-strain linear elasticity, for "
         "small deformations only (allowed with Model = elastic only).");
       prm.add_parameter(
         "Hardening",
