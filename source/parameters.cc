@@ -282,9 +282,22 @@ namespace densify
         "Friction tangent",
         contact.friction_tangent,
         "'symmetric': the slip tangent without its nonsymmetric coupling to "
-        "the pressure (CG works); 'consistent': with it (quadratic Newton "
-        "near slip, needs Solver/Linear solver = gmres-amg or direct).",
-        Patterns::Selection("symmetric|consistent"));
+        "the pressure (CG works; Newton converges only linearly where "
+        "points slip); 'consistent': with it (quadratic Newton near slip, "
+        "needs Solver/Linear solver = gmres-amg, direct or auto); 'auto': "
+        "consistent unless Solver/Linear solver = cg-amg.",
+        Patterns::Selection("auto|symmetric|consistent"));
+      prm.add_parameter(
+        "Contact points",
+        contact.contact_points,
+        "Where contact with tools and other particles is evaluated on a "
+        "particle's surface facets. 'vertices': at the facet corners (node "
+        "to surface, weights area/3; the first point to touch is a mesh "
+        "vertex, e.g. a sphere's pole, so a faceted sphere is pressed "
+        "without a spurious moment); 'Gauss points': at the facet's Gauss "
+        "points (needed for P2, whose vertex weights vanish); 'auto': "
+        "vertices for P1, Gauss points for P2.",
+        Patterns::Selection("auto|vertices|Gauss points"));
       prm.add_parameter(
         "Hold poles on axis",
         contact.hold_poles,
@@ -331,8 +344,10 @@ namespace densify
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
         "the six rigid-body modes (scales to large problems); gmres-amg: "
         "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
-        "tangent = consistent); direct: Amesos KLU (small problems only).",
-        Patterns::Selection("cg-amg|gmres-amg|direct"));
+        "tangent = consistent); direct: Amesos KLU (small problems only); "
+        "auto: gmres-amg where friction acts with the consistent tangent, "
+        "cg-amg otherwise.",
+        Patterns::Selection("auto|cg-amg|gmres-amg|direct"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,
                         "CG stops when the residual falls below this times "

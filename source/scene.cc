@@ -201,6 +201,11 @@ namespace densify
             "Contact/Hold poles on axis is for a single particle: switch it "
             "off in scenes with several particles");
       }
+    if (prm.contact.contact_points == "vertices" && prm.mesh.degree != 1)
+      throw std::runtime_error(
+        "Contact/Contact points = vertices is for P1 elements (the edge "
+        "midpoints of P2 would not be held): set it to auto or Gauss points, "
+        "or Mesh/Polynomial degree = 1");
     if (prm.contact.friction_tangent == "consistent" &&
         prm.solver.linear_solver == "cg-amg")
       throw std::runtime_error(

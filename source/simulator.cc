@@ -34,6 +34,22 @@ namespace densify
 {
   namespace
   {
+    /// The points where contact is evaluated on a reference surface triangle
+    /// (Contact/Contact points): the corners with weights area/3 (node to
+    /// surface) or the Gauss points of degree + 1.
+    Quadrature<2>
+    contact_quadrature(const Parameters &prm)
+    {
+      const std::string &choice = prm.contact.contact_points;
+      if (choice == "vertices" || (choice == "auto" && prm.mesh.degree == 1))
+        return Quadrature<2>(
+          std::vector<Point<2>>{Point<2>(0, 0), Point<2>(1, 0), Point<2>(0, 1)},
+          std::vector<double>(3, 1. / 6.));
+      return QGaussSimplex<2>(prm.mesh.degree + 1);
+    }
+
+
+
     /// A stream buffer writing to two others (console and log file).
     class TeeBuffer : public std::streambuf
     {
@@ -233,7 +249,19 @@ namespace densify
     friction.model =
       (prm.contact.friction_model == "arctangent" ? FrictionModel::arctangent :
                                                     FrictionModel::coulomb);
-    friction.consistent = (prm.contact.friction_tangent == "consistent");
+    // 'auto' choices: the consistent (nonsymmetric) friction tangent with
+    // GMRES where friction acts, CG otherwise (doc/theory.md section 8)
+    bool any_friction = has_particle_contact && friction.mu > 0;
+    for (const RigidTool &tool : tools)
+      any_friction |= tool_friction[static_cast<unsigned>(tool.kind)] > 0;
+    const std::string &tangent_choice = prm.contact.friction_tangent;
+    friction.consistent =
+      any_friction &&
+      (tangent_choice == "consistent" ||
+       (tangent_choice == "auto" && prm.solver.linear_solver != "cg-amg"));
+    linear_solver_type = prm.solver.linear_solver;
+    if (linear_solver_type == "auto")
+      linear_solver_type = friction.consistent ? "gmres-amg" : "cg-amg";
     friction.tangential_ratio =
       prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
     std::vector<FrictionLaw> tool_laws;
@@ -242,8 +270,8 @@ namespace densify
         tool_laws.push_back(friction);
         tool_laws.back().mu = tool_friction[static_cast<unsigned>(tool.kind)];
       }
-    tool_contact.setup(
-      dof_handler, tools, tool_laws, penalty, prm.mesh.degree + 1);
+    const Quadrature<2> contact_points = contact_quadrature(prm);
+    tool_contact.setup(dof_handler, tools, tool_laws, penalty, contact_points);
     tool_contact.set_committed_solution(committed_ghosted);
     if (has_particle_contact)
       {
@@ -253,7 +281,7 @@ namespace densify
         particle_contact.setup(dof_handler,
                                penalty,
                                friction,
-                               prm.mesh.degree + 1);
+                               contact_points);
         particle_contact.set_committed_solution(committed_ghosted);
         update_ghosts();
         particle_contact.update_search(solution_ghosted, search_margin);
@@ -275,7 +303,7 @@ namespace densify
     next_increment = prm.time.end_time / prm.time.n_steps;
 
     linear_solver =
-      std::make_unique<LinearSolver>(prm.solver.linear_solver,
+      std::make_unique<LinearSolver>(linear_solver_type,
                                      prm.solver.linear_tolerance,
                                      prm.solver.max_linear_iterations,
                                      prm.solver.reuse_amg,
@@ -1149,7 +1177,7 @@ namespace densify
         pcout << ", plastic history";
       if (nodal_averaging)
         pcout << ", nodal-averaged F-bar (P1 locking remedy)";
-      pcout << "; linear solver " << prm.solver.linear_solver << std::endl;
+      pcout << "; linear solver " << linear_solver_type << std::endl;
     }
 
     const double die_area =

@@ -43,7 +43,7 @@ main(int argc, char **argv)
   using namespace densify;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const StepStatistics             reference = run("30");
-  const StepStatistics             cut       = run("6");
+  const StepStatistics             cut       = run("3");
 
   const bool was_cut = cut.cutbacks > 0 && cut.increments > 1;
   const bool reached = std::abs(cut.punch_displacement - 0.1) < 1e-14;

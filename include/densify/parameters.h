@@ -121,8 +121,12 @@ namespace densify
     double slip_velocity = 0.01;
     /// Tangential (stick) penalty = factor * E / h (MPa/mm).
     double tangential_penalty_factor = 1.;
-    /// "symmetric" (CG) or "consistent" (needs GMRES or a direct solver).
-    std::string friction_tangent = "symmetric";
+    /// "auto" (consistent unless the linear solver is cg-amg), "symmetric"
+    /// (CG) or "consistent" (needs GMRES or a direct solver).
+    std::string friction_tangent = "auto";
+    /// Where contact is evaluated on particle surfaces: "auto" (vertices for
+    /// P1, Gauss points for P2), "vertices" or "Gauss points".
+    std::string contact_points = "auto";
     /// Hold the top and bottom pole vertices of every particle on its
     /// vertical axis by horizontal springs (frictionless single-particle
     /// scenes; doc/theory.md).
@@ -144,7 +148,7 @@ namespace densify
   struct SolverParameters
   {
     /// "cg-amg", "gmres-amg" or "direct".
-    std::string linear_solver = "cg-amg";
+    std::string linear_solver = "auto";
     /// Relative tolerance of the linear solver.
     double linear_tolerance = 1e-8;
     /// Maximum CG iterations.

@@ -75,12 +75,12 @@ namespace densify
   ParticleContact::setup(const DoFHandler<3>       &dof_handler,
                          const std::vector<double> &penalty_per_particle,
                          const FrictionLaw         &friction_law,
-                         const unsigned int         quadrature_points_1d)
+                         const Quadrature<2>        &contact_quadrature)
   {
     this->dof_handler = &dof_handler;
     penalty           = penalty_per_particle;
     friction          = friction_law;
-    face_quadrature   = QGaussSimplex<2>(quadrature_points_1d);
+    face_quadrature   = contact_quadrature;
     n_particles       = penalty.size();
 
     // all surface facets, grouped by particle

@@ -32,13 +32,13 @@ namespace densify
                      const std::vector<RigidTool>   &tools,
                      const std::vector<FrictionLaw> &friction,
                      const std::vector<double>      &penalty_per_particle,
-                     const unsigned int              quadrature_points_1d)
+                     const Quadrature<2>             &contact_quadrature)
   {
     this->dof_handler = &dof_handler;
     tool_list         = tools;
     friction_laws     = friction;
     penalty           = penalty_per_particle;
-    face_quadrature   = QGaussSimplex<2>(quadrature_points_1d);
+    face_quadrature   = contact_quadrature;
     shift.assign(tools.size(), Tensor<1, 3>());
     committed_shift = shift;
     faces.clear();

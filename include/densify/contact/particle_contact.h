@@ -75,13 +75,14 @@ namespace densify
     /**
      * Collect the surface facets of all particles and the slave faces of the
      * locally owned cells. @p penalty_per_particle[material_id] is eps; a
-     * pair of particles uses the smaller one.
+     * pair of particles uses the smaller one. @p contact_quadrature on the
+     * reference triangle gives the slave points of each facet.
      */
     void
     setup(const DoFHandler<3>       &dof_handler,
           const std::vector<double> &penalty_per_particle,
           const FrictionLaw         &friction,
-          const unsigned int         quadrature_points_1d);
+          const Quadrature<2>        &contact_quadrature);
 
     /// The displacement of the last accepted increment (all DoFs).
     void
@@ -252,7 +253,7 @@ namespace densify
     /// Cell couplings within pattern_margin_factor times the search margin.
     std::set<std::pair<unsigned, unsigned>> wide_couplings;
     /// How much wider than the search margin the pattern couplings reach.
-    static constexpr double pattern_margin_factor = 4.;
+    static constexpr double pattern_margin_factor = 1.5;
 
     BroadSearch            broad_search;
     std::vector<FacetTree> trees;

@@ -76,14 +76,15 @@ namespace densify
     /**
      * Collect the boundary faces of the locally owned cells and set every
      * multiplier to zero. @p penalty_per_particle[material_id] is eps (MPa/mm);
-     * @p friction[t] is the friction law of tools[t].
+     * @p friction[t] is the friction law of tools[t]. @p contact_quadrature
+     * on the reference triangle gives the contact points of each face.
      */
     void
     setup(const DoFHandler<3>            &dof_handler,
           const std::vector<RigidTool>   &tools,
           const std::vector<FrictionLaw> &friction,
           const std::vector<double>      &penalty_per_particle,
-          const unsigned int              quadrature_points_1d);
+          const Quadrature<2>             &contact_quadrature);
 
     /// Move a tool (its position), e.g. the upper punch at each step.
     void
