@@ -1,4 +1,5 @@
-# Every prm/*.prm runs in a shrunk form (coarse P1 mesh, two steps) and writes
+# Every prm/*.prm runs in a shrunk form (coarse P1 mesh, two steps, a shorter
+# stroke for the slowest scenes) and writes
 # statistics.csv with the documented columns plus a readable .pvd.
 set -eu
 cd "$WORK_DIR"
@@ -6,7 +7,12 @@ columns="step,time,punch_displacement,upper_punch_force,lower_punch_force,die_wa
 for scene in "$SOURCE_DIR"/prm/*.prm; do
   name=$(basename "$scene" .prm)
   echo "== $name"
-  "$DENSIFY" "$scene" \
+  # scenes that take minutes even on the coarse mesh also get a shorter stroke
+  extra=()
+  case "$name" in
+    seven_spheres_sn) extra=(--set "Tools/Upper punch/Displacement history=0:0, 1:0.04") ;;
+  esac
+  "$DENSIFY" "$scene" "${extra[@]}" \
     --set "Output/Directory=out_$name" \
     --set "Mesh/Polynomial degree=1" \
     --set "Mesh/Element size=0.6" \
