@@ -196,10 +196,14 @@ namespace densify
             "Contact/Hold poles on axis is for frictionless scenes: set "
             "Contact/Friction coefficient = 0 (and no tool Friction "
             "coefficient above 0), or switch it off");
-        if (scene.particles.size() > 1)
-          throw std::runtime_error(
-            "Contact/Hold poles on axis is for a single particle: switch it "
-            "off in scenes with several particles");
+        // one particle, or a stack on one vertical line (axisymmetric)
+        for (const Particle &p : scene.particles)
+          if (std::hypot(p.centre[0] - scene.particles[0].centre[0],
+                         p.centre[1] - scene.particles[0].centre[1]) >
+              1e-9 * scene.particles[0].diameter)
+            throw std::runtime_error(
+              "Contact/Hold poles on axis is for one particle or a stack of "
+              "particles on one vertical line: switch it off in this scene");
       }
     if (prm.contact.contact_points == "vertices" && prm.mesh.degree != 1)
       throw std::runtime_error(

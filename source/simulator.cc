@@ -277,7 +277,7 @@ namespace densify
       {
         // candidates within an element of the smallest size: more than a
         // Newton iteration can move (the step limiter allows h/2)
-        search_margin = h_min;
+        search_margin = 0.25 * h_min;
         particle_contact.setup(dof_handler,
                                penalty,
                                friction,

@@ -87,7 +87,7 @@ namespace densify
       {
         TimerOutput::Scope t(timer, "Solve: direct");
         TrilinosWrappers::SolverDirect::AdditionalData data(false,
-                                                            "Amesos_Klu");
+                                                            "Amesos_Mumps");
         TrilinosWrappers::SolverDirect                 solver(control, data);
         solver.solve(matrix, x, b);
         return 1;
