@@ -344,7 +344,7 @@ namespace densify
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
         "the six rigid-body modes (scales to large problems); gmres-amg: "
         "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
-        "tangent = consistent); direct: Amesos KLU (small problems only); "
+        "tangent = consistent); direct: Amesos MUMPS (small problems only); "
         "auto: gmres-amg where friction acts with the consistent tangent, "
         "cg-amg otherwise.",
         Patterns::Selection("auto|cg-amg|gmres-amg|direct"));
