@@ -2,13 +2,16 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <densify/geometry/packing.h>
 #include <densify/parameters.h>
 #include <densify/scene.h>
 #include <densify/simulator.h>
 #include <densify/utilities.h>
 
+#include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -98,10 +101,22 @@ main(int argc, char **argv)
       return fail("no parameter file given", 2);
     }
 
+  std::string summary;
   try
     {
       read_parameters(prm, filename, overrides);
-      build_scene(parameters);
+      const Scene scene = build_scene(parameters);
+      std::ostringstream what;
+      what << scene.particles.size() << " particle(s)";
+      if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&
+          scene.upper_initial > parameters.tools.lower_position)
+        what << ", relative density " << std::fixed << std::setprecision(2)
+             << 100 * layer_relative_density(scene.particles,
+                                             parameters.tools.die_diameter,
+                                             scene.upper_initial -
+                                               parameters.tools.lower_position)
+             << " % of the die up to the upper punch (spheres)";
+      summary = what.str();
     }
   catch (const std::exception &e)
     {
@@ -110,7 +125,7 @@ main(int argc, char **argv)
   if (validate_only)
     {
       if (root)
-        std::cout << filename << ": valid" << std::endl;
+        std::cout << filename << ": valid (" << summary << ")" << std::endl;
       return 0;
     }
 

@@ -18,6 +18,35 @@ namespace densify
     prm.enter_subsection("Particles");
     {
       prm.add_parameter(
+        "Packing",
+        particles.packing,
+        "'list': the particles of Centres (or of the particle file); "
+        "'hexagonal layer': one layer of equal spheres (the first Diameter, "
+        "the first Material) on a hexagonal lattice whose neighbours touch, "
+        "clipped to the die (Tools/Die wall/Diameter), resting on the lower "
+        "punch; 'random layer': Number of particles such spheres placed by "
+        "random sequential addition with Packing seed, then moved towards "
+        "the axis until they touch. The initial relative density is printed "
+        "(also by --validate).",
+        Patterns::Selection("list|hexagonal layer|random layer"));
+      prm.add_parameter("Number of particles",
+                        particles.n_particles,
+                        "Particles of the random layer (> 0).",
+                        Patterns::Integer(1));
+      prm.add_parameter("Packing seed",
+                        particles.packing_seed,
+                        "Seed of the random layer (the same seed gives the "
+                        "same layer).");
+      prm.add_parameter(
+        "Hexagonal placement",
+        particles.hexagonal_placement,
+        "Where the die axis sits in the hexagonal layer: on a particle "
+        "centre (d = 2.5 mm in a 20 mm die: 43 particles, the reference "
+        "paper's layer), on a triangle's centre (42), on the contact point "
+        "of two particles (48), or the placement with the most particles.",
+        Patterns::Selection(
+          "particle centred|hole centred|edge centred|most particles"));
+      prm.add_parameter(
         "Centres",
         particles.centres,
         "Particle centres 'x,y,z; x,y,z; ...' in mm (die axis = z axis). "

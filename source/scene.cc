@@ -4,6 +4,7 @@
 
 #include <densify/assembly/nodal_averaging.h>
 #include <densify/material/factory.h>
+#include <densify/geometry/packing.h>
 #include <densify/scene.h>
 
 #include <algorithm>
@@ -84,7 +85,67 @@ namespace densify
     Scene                     scene;
     std::vector<Particle>    &particles = scene.particles;
     const ParticleParameters &pp        = prm.particles;
-    if (!pp.particle_file.empty())
+    if (pp.packing != "list")
+      {
+        if (!prm.tools.die_enabled || !prm.tools.lower_enabled)
+          throw std::runtime_error(
+            "Particles/Packing = " + pp.packing +
+            " fills the die on the lower punch: enable Tools/Die wall and "
+            "Tools/Lower punch, or set Particles/Packing = list");
+        const std::vector<std::string> d_list =
+          Utilities::split_string_list(pp.diameters, ',');
+        double d = 0;
+        try
+          {
+            d = Utilities::string_to_double(d_list.at(0));
+          }
+        catch (...)
+          {
+            throw std::runtime_error("Particles/Diameters: '" + pp.diameters +
+                                     "' does not start with a number");
+          }
+        if (!(d > 0))
+          throw std::runtime_error(
+            "Particles/Diameters: the layer's diameter must be > 0 mm");
+        const std::string material =
+          Utilities::split_string_list(pp.materials, ',').at(0);
+        const double z = prm.tools.lower_position + d / 2;
+        try
+          {
+            if (pp.packing == "hexagonal layer")
+              {
+                const std::string &where = pp.hexagonal_placement;
+                const HexagonalPlacement placement =
+                  where == "particle centred" ?
+                    HexagonalPlacement::particle_centred :
+                  where == "hole centred" ? HexagonalPlacement::hole_centred :
+                  where == "edge centred" ? HexagonalPlacement::edge_centred :
+                                            HexagonalPlacement::best;
+                particles = hexagonal_layer(
+                  prm.tools.die_diameter, d, z, material, 0., placement);
+              }
+            else
+              particles = random_layer(prm.tools.die_diameter,
+                                       d,
+                                       z,
+                                       pp.n_particles,
+                                       pp.packing_seed,
+                                       material);
+          }
+        catch (const std::exception &e)
+          {
+            throw std::runtime_error(
+              "Particles/Packing = " + pp.packing + ": " + e.what() +
+              " (Particles/Number of particles, Particles/Diameters)");
+          }
+        if (particles.empty())
+          throw std::runtime_error(
+            "Particles/Packing = " + pp.packing + ": no sphere of diameter " +
+            d_list.at(0) +
+            " mm fits the die: lower Particles/Diameters or widen Tools/Die "
+            "wall/Diameter");
+      }
+    else if (!pp.particle_file.empty())
       particles = read_particle_csv(pp.particle_file, pp.materials);
     else
       {

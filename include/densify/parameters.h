@@ -16,6 +16,16 @@ namespace densify
   /// Subsection "Particles": where the particles are and what they are made of.
   struct ParticleParameters
   {
+    /// "list" (Centres or the particle file), "hexagonal layer" or "random
+    /// layer" (generated in the die on the lower punch).
+    std::string packing = "list";
+    /// Particles of the random layer.
+    unsigned int n_particles = 43;
+    /// Seed of the random layer.
+    unsigned int packing_seed = 1;
+    /// Where the die axis sits in the hexagonal layer: "particle centred",
+    /// "hole centred", "edge centred" or "most particles".
+    std::string hexagonal_placement = "particle centred";
     /// Centres "x,y,z; x,y,z; ..." (mm); ignored if a particle file is given.
     std::string centres = "0,0,1.25";
     /// Diameters (mm): one value for all particles or one per particle.
