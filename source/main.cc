@@ -105,7 +105,7 @@ main(int argc, char **argv)
   try
     {
       read_parameters(prm, filename, overrides);
-      const Scene scene = build_scene(parameters);
+      const Scene        scene = build_scene(parameters);
       std::ostringstream what;
       what << scene.particles.size() << " particle(s)";
       if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&

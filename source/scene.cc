@@ -3,8 +3,8 @@
 #include <deal.II/base/utilities.h>
 
 #include <densify/assembly/nodal_averaging.h>
-#include <densify/material/factory.h>
 #include <densify/geometry/packing.h>
+#include <densify/material/factory.h>
 #include <densify/scene.h>
 
 #include <algorithm>
@@ -114,7 +114,7 @@ namespace densify
           {
             if (pp.packing == "hexagonal layer")
               {
-                const std::string &where = pp.hexagonal_placement;
+                const std::string       &where = pp.hexagonal_placement;
                 const HexagonalPlacement placement =
                   where == "particle centred" ?
                     HexagonalPlacement::particle_centred :

@@ -42,9 +42,10 @@ namespace densify
     {
       const std::string &choice = prm.contact.contact_points;
       if (choice == "vertices" || (choice == "auto" && prm.mesh.degree == 1))
-        return Quadrature<2>(
-          std::vector<Point<2>>{Point<2>(0, 0), Point<2>(1, 0), Point<2>(0, 1)},
-          std::vector<double>(3, 1. / 6.));
+        return Quadrature<2>(std::vector<Point<2>>{Point<2>(0, 0),
+                                                   Point<2>(1, 0),
+                                                   Point<2>(0, 1)},
+                             std::vector<double>(3, 1. / 6.));
       return QGaussSimplex<2>(prm.mesh.degree + 1);
     }
 
@@ -278,10 +279,7 @@ namespace densify
         // candidates within an element of the smallest size: more than a
         // Newton iteration can move (the step limiter allows h/2)
         search_margin = 0.25 * h_min;
-        particle_contact.setup(dof_handler,
-                               penalty,
-                               friction,
-                               contact_points);
+        particle_contact.setup(dof_handler, penalty, friction, contact_points);
         particle_contact.set_committed_solution(committed_ghosted);
         update_ghosts();
         particle_contact.update_search(solution_ghosted, search_margin);

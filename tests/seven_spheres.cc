@@ -86,15 +86,15 @@ namespace
         << " N, equal within 1 %: "
         << testing::yes(f_max - f_min < 0.01 * f_max) << std::endl;
     const std::vector<unsigned int> partners = simulator.contact_partners();
-    const unsigned int outer_min =
+    const unsigned int              outer_min =
       *std::min_element(partners.begin() + 1, partners.begin() + 7);
     const unsigned int outer_max =
       *std::max_element(partners.begin() + 1, partners.begin() + 7);
     out << "  contact partners of the centre sphere: " << partners[0]
         << ", of the outer ones: " << outer_min << " .. " << outer_max
         << ", of the floating particle: " << partners[7] << " (6, 3, 0: "
-        << testing::yes(partners[0] == 6 && outer_min == 3 &&
-                        outer_max == 3 && partners[7] == 0)
+        << testing::yes(partners[0] == 6 && outer_min == 3 && outer_max == 3 &&
+                        partners[7] == 0)
         << ")" << std::endl;
 
     // drift: the centre and the floating particle stay, the outer spheres

@@ -300,9 +300,9 @@ namespace densify
 
     ToolContact tool_contact;
     /// Particle-particle contact, if there is more than one particle.
-    bool            has_particle_contact = false;
+    bool has_particle_contact = false;
     /// Solver/Linear solver with 'auto' resolved (cg-amg, gmres-amg, direct).
-    std::string linear_solver_type;
+    std::string     linear_solver_type;
     ParticleContact particle_contact;
     /// Search margin of the particle contact (mm).
     double search_margin = 0.;

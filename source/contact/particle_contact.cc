@@ -75,7 +75,7 @@ namespace densify
   ParticleContact::setup(const DoFHandler<3>       &dof_handler,
                          const std::vector<double> &penalty_per_particle,
                          const FrictionLaw         &friction_law,
-                         const Quadrature<2>        &contact_quadrature)
+                         const Quadrature<2>       &contact_quadrature)
   {
     this->dof_handler = &dof_handler;
     penalty           = penalty_per_particle;

@@ -32,7 +32,7 @@ namespace densify
                      const std::vector<RigidTool>   &tools,
                      const std::vector<FrictionLaw> &friction,
                      const std::vector<double>      &penalty_per_particle,
-                     const Quadrature<2>             &contact_quadrature)
+                     const Quadrature<2>            &contact_quadrature)
   {
     this->dof_handler = &dof_handler;
     tool_list         = tools;

@@ -82,7 +82,7 @@ namespace densify
     setup(const DoFHandler<3>       &dof_handler,
           const std::vector<double> &penalty_per_particle,
           const FrictionLaw         &friction,
-          const Quadrature<2>        &contact_quadrature);
+          const Quadrature<2>       &contact_quadrature);
 
     /// The displacement of the last accepted increment (all DoFs).
     void

@@ -84,7 +84,7 @@ namespace densify
           const std::vector<RigidTool>   &tools,
           const std::vector<FrictionLaw> &friction,
           const std::vector<double>      &penalty_per_particle,
-          const Quadrature<2>             &contact_quadrature);
+          const Quadrature<2>            &contact_quadrature);
 
     /// Move a tool (its position), e.g. the upper punch at each step.
     void
