@@ -50,7 +50,7 @@ namespace densify
         "Centres",
         particles.centres,
         "Particle centres 'x,y,z; x,y,z; ...' in mm (die axis = z axis). "
-        "Ignored when a particle file is given.");
+        "Ignored when a particle file is given or Packing is not list.");
       prm.add_parameter(
         "Diameters",
         particles.diameters,
