@@ -359,8 +359,9 @@ namespace densify
         time.max_cutbacks,
         "A load increment that does not converge is rolled back and retried "
         "with half the increment, at most this many times in a row within "
-        "one load step; the increment grows again after easy increments and "
-        "every load step still ends at its own time. 0: no cut-back.",
+        "one load step and never below 2^-N of a step (N this number); the "
+        "increment grows again after easy increments and every load step "
+        "still ends at its own time. 0: no cut-back.",
         Patterns::Integer(0, 30));
     }
     prm.leave_subsection();

@@ -886,12 +886,21 @@ namespace densify
             last_punch_increment = saved_punch;
             current_upper        = saved_upper;
             update_ghosts();
-            if (cutbacks_in_a_row == prm.time.max_cutbacks)
+            // at most max_cutbacks halvings in a row, and never below
+            // step_length / 2^max_cutbacks (a load that can only creep on in
+            // ever smaller increments, e.g. beyond the friction limit, stops)
+            const double smallest =
+              step_length *
+              std::ldexp(1., -static_cast<int>(prm.time.max_cutbacks));
+            if (cutbacks_in_a_row == prm.time.max_cutbacks ||
+                dt / 2 < smallest * (1 - 1e-9))
               throw std::runtime_error(
                 std::string(e.what()) +
                 (prm.time.max_cutbacks > 0 ?
-                   " (also after " + std::to_string(cutbacks_in_a_row) +
-                     " cut-backs; raise Time stepping/Maximum cut-backs)" :
+                   " (also after " + std::to_string(s.cutbacks) +
+                     " cut-backs, the increment down to " +
+                     std::to_string(dt / step_length) +
+                     " of a step; raise Time stepping/Maximum cut-backs)" :
                    ""));
             dt /= 2;
             ++cutbacks_in_a_row;
