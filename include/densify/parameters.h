@@ -157,7 +157,8 @@ namespace densify
   /// Subsection "Solver": Newton, linear solver and stabilisation.
   struct SolverParameters
   {
-    /// "cg-amg", "gmres-amg" or "direct".
+    /// "auto" (gmres-amg where friction acts with the consistent tangent,
+    /// cg-amg otherwise), "cg-amg", "gmres-amg" or "direct" (MUMPS).
     std::string linear_solver = "auto";
     /// Relative tolerance of the linear solver.
     double linear_tolerance = 1e-8;
