@@ -4,7 +4,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 packages=(libdeal.ii-dev g++ make cmake numdiff openmpi-bin
-          python3-numpy python3-matplotlib python3-vtk9 xvfb xauth)  # the last five: scripts/postprocess
+          python3-numpy python3-matplotlib python3-vtk9 xvfb xauth  # scripts/postprocess
+          time)  # /usr/bin/time in benchmarks/scene_speed.sh
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
