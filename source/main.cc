@@ -8,6 +8,7 @@
 #include <densify/simulator.h>
 #include <densify/utilities.h>
 
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -22,17 +23,35 @@ namespace
     "  densify FILE.prm [--set \"Subsection/Name=value\"]...   run a scene\n"
     "  densify --validate FILE.prm [--set ...]              check a scene "
     "without running it\n"
+    "  densify FILE.prm --resume [--set ...]                continue a "
+    "stopped run from its checkpoint\n"
     "  densify --print-parameters                            print every "
     "parameter with its documentation\n"
     "  densify --help                                        this text\n"
     "\n"
     "Run in parallel with: mpirun -np N densify FILE.prm\n"
+    "Options of a run: --stop-after N stops after load step N with a "
+    "checkpoint (as SIGINT or SIGTERM does after the current step); "
+    "--resume continues from Output/Directory/checkpoint/ with the same "
+    "parameters and number of ranks.\n"
     "--set overrides an entry of FILE.prm (repeatable); nested subsections "
     "are separated by '/', e.g.\n"
     "  densify prm/hertz.prm --set \"Tools/Upper punch/Displacement "
     "history=0:0, 1:0.02\"\n"
     "Exit codes: 0 success, 1 the run failed (e.g. Newton did not "
-    "converge), 2 bad input.\n";
+    "converge), 2 bad input, 3 stopped early with a checkpoint (--stop-after, "
+    "SIGINT, SIGTERM).\n";
+
+  /// Set by the first SIGINT or SIGTERM: stop after the current load step.
+  volatile std::sig_atomic_t stop_requested = 0;
+
+  /// The handler of the first SIGINT/SIGTERM; a second one acts as usual.
+  extern "C" void
+  request_stop(int signal_number)
+  {
+    stop_requested = 1;
+    std::signal(signal_number, SIG_DFL);
+  }
 } // namespace
 
 int
@@ -51,6 +70,7 @@ main(int argc, char **argv)
   std::string              filename;
   std::vector<std::string> overrides;
   bool                     validate_only = false, print_parameters = false;
+  RunControl               control;
   for (int i = 1; i < argc; ++i)
     {
       const std::string arg = argv[i];
@@ -64,6 +84,20 @@ main(int argc, char **argv)
         print_parameters = true;
       else if (arg == "--validate")
         validate_only = true;
+      else if (arg == "--resume")
+        control.resume = true;
+      else if (arg == "--stop-after")
+        {
+          if (i + 1 == argc)
+            return fail("--stop-after needs a load step number N >= 1", 2);
+          const std::string n = argv[++i];
+          if (n.empty() || n.find_first_not_of("0123456789") != n.npos ||
+              n.size() > 9 || std::stoul(n) == 0)
+            return fail("--stop-after '" + n +
+                          "': expected a load step number N >= 1",
+                        2);
+          control.stop_after = std::stoul(n);
+        }
       else if (arg == "--set")
         {
           if (i + 1 == argc)
@@ -105,6 +139,7 @@ main(int argc, char **argv)
   try
     {
       read_parameters(prm, filename, overrides);
+      parameters.fingerprint   = parameter_fingerprint(prm);
       const Scene        scene = build_scene(parameters);
       std::ostringstream what;
       what << scene.particles.size() << " particle(s)";
@@ -134,10 +169,21 @@ main(int argc, char **argv)
   // and print a warning)
   std::unique_ptr<Simulator> simulator;
   std::string                error;
+  int                        error_code = 1;
+  bool                       finished   = false;
+  control.stop_request                  = &stop_requested;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
   try
     {
-      simulator = std::make_unique<Simulator>(parameters, MPI_COMM_WORLD);
-      simulator->run();
+      simulator =
+        std::make_unique<Simulator>(parameters, MPI_COMM_WORLD, true, control);
+      finished = simulator->run();
+    }
+  catch (const InputError &e)
+    {
+      error      = e.what();
+      error_code = 2;
     }
   catch (const std::exception &e)
     {
@@ -155,7 +201,7 @@ main(int argc, char **argv)
     {
       if (simulator)
         simulator->write_to_log_file("densify: error: " + error);
-      return fail(error, 1);
+      return fail(error, error_code);
     }
-  return 0;
+  return finished ? 0 : 3;
 }

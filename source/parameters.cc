@@ -432,6 +432,13 @@ namespace densify
       prm.add_parameter("Verbose",
                         output.verbose,
                         "Print the residual of every Newton iteration.");
+      prm.add_parameter(
+        "Checkpoint interval",
+        output.checkpoint_interval,
+        "Write a checkpoint (DIRECTORY/checkpoint/) every this many load "
+        "steps; 0: only when the run is stopped (SIGINT, SIGTERM, "
+        "--stop-after). densify --resume continues from it.",
+        Patterns::Integer(0));
     }
     prm.leave_subsection();
   }
@@ -503,6 +510,42 @@ namespace densify
         for (; depth > 0; --depth)
           prm.leave_subsection();
       }
+  }
+
+
+
+  std::string
+  parameter_fingerprint(const ParameterHandler &prm)
+  {
+    // the short PRM text ("subsection", "set Name = value", "end" lines),
+    // flattened to "Sub/Sub/Name = value"
+    std::ostringstream prm_text;
+    prm.print_parameters(prm_text, ParameterHandler::ShortPRM);
+    std::istringstream       in(prm_text.str());
+    std::vector<std::string> path;
+    std::ostringstream       text;
+    for (std::string line; std::getline(in, line);)
+      {
+        line = Utilities::trim(line);
+        if (line.rfind("subsection ", 0) == 0)
+          path.push_back(Utilities::trim(line.substr(11)));
+        else if (line == "end" && !path.empty())
+          path.pop_back();
+        else if (line.rfind("set ", 0) == 0 &&
+                 (path.empty() || path[0] != "Output"))
+          {
+            const std::string entry = line.substr(4);
+            const auto        eq    = entry.find('=');
+            for (const std::string &p : path)
+              text << p << '/';
+            text << Utilities::trim(entry.substr(0, eq)) << " = "
+                 << (eq == std::string::npos ?
+                       std::string() :
+                       Utilities::trim(entry.substr(eq + 1)))
+                 << '\n';
+          }
+      }
+    return text.str();
   }
 
 

@@ -116,14 +116,17 @@ namespace densify
 
     /// Create the output directory (rank 0) and open its log.txt.
     std::ofstream
-    open_log(const std::string &directory, const unsigned int rank)
+    open_log(const std::string &directory,
+             const unsigned int rank,
+             const bool         append)
     {
       std::ofstream log;
       if (rank == 0)
         {
           std::error_code error;
           std::filesystem::create_directories(directory, error);
-          log.open(directory + "/log.txt");
+          log.open(directory + "/log.txt",
+                   append ? std::ios::app : std::ios::trunc);
           if (!log)
             throw std::runtime_error("Output/Directory: cannot write '" +
                                      directory + "/log.txt'");
@@ -146,11 +149,13 @@ namespace densify
 
   Simulator::Simulator(const Parameters &parameters,
                        const MPI_Comm    comm,
-                       const bool        console)
+                       const bool        console,
+                       const RunControl &control)
     : prm(parameters)
+    , control(control)
     , comm(comm)
     , this_rank(Utilities::MPI::this_mpi_process(comm))
-    , log_file(open_log(parameters.output.directory, this_rank))
+    , log_file(open_log(parameters.output.directory, this_rank, control.resume))
     , tee(std::make_unique<TeeStream>(console ? &std::cout : nullptr,
                                       this_rank == 0 ? &log_file : nullptr))
     , pcout(*tee, this_rank == 0)
@@ -292,8 +297,13 @@ namespace densify
       has_history = has_history || m->needs_history();
     if (has_history)
       {
-        const unsigned int n_q = QGaussSimplex<3>(prm.mesh.degree + 1).size();
-        committed_history.assign(triangulation.n_active_cells() * n_q,
+        // one state per quadrature point, or per cell corner with the
+        // nodal-averaged F-bar (NodalAveraging's layout)
+        history_per_cell = use_nodal_averaging(prm) ?
+                             4 :
+                             QGaussSimplex<3>(prm.mesh.degree + 1).size();
+        committed_history.assign(triangulation.n_active_cells() *
+                                   history_per_cell,
                                  MaterialState());
         trial_history = committed_history;
       }
@@ -969,6 +979,16 @@ namespace densify
       cell_p(post_dofs.size()), cell_e(post_dofs.size());
     Tensor<2, 3> P;
     Tensor<4, 3> A;
+    // the reference-cell corner of largest barycentric weight at each point
+    std::vector<unsigned int> nearest_corner(quadrature.size());
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      {
+        const Point<3>             &x = quadrature.point(q);
+        const std::array<double, 4> weight{
+          {1. - x[0] - x[1] - x[2], x[0], x[1], x[2]}};
+        nearest_corner[q] =
+          std::max_element(weight.begin(), weight.end()) - weight.begin();
+      }
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -984,8 +1004,13 @@ namespace densify
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+              // with the nodal-averaged F-bar the history is kept at the
+              // corners: take the corner nearest to the point. F-bar differs
+              // from F by a volumetric factor only, so the von Mises stress
+              // of F with that history is the corner's
               const unsigned int k =
-                cell->active_cell_index() * quadrature.size() + q;
+                cell->active_cell_index() * history_per_cell +
+                (nodal_averaging ? nearest_corner[q] : q);
               MaterialState scratch;
               particle_material[cell->material_id()]->evaluate(
                 F,
@@ -1143,7 +1168,7 @@ namespace densify
 
 
 
-  void
+  bool
   Simulator::run()
   {
     Timer wall;
@@ -1207,22 +1232,37 @@ namespace densify
               << v0 << " mm^3)" << std::defaultfloat << std::endl;
     }
 
-    if (this_rank == 0)
-      statistics_writer = std::make_unique<StatisticsWriter>(
-        prm.output.directory + "/statistics.csv");
     for (const ParticleMeasure &m : measure_particles())
       initial_volumes.push_back(m.volume);
+    // a resumed run continues after the checkpoint's step, appending to the
+    // files' rows up to that step
+    const unsigned int first_step = control.resume ? read_checkpoint() + 1 : 1;
+    const std::string  statistics_name =
+      prm.output.directory + "/statistics.csv";
+    const std::string particle_name = prm.output.directory + "/particles.csv";
     if (this_rank == 0)
       {
-        particle_file.open(prm.output.directory + "/particles.csv");
-        particle_file << "step,particle,material,volume,initial_volume,"
-                         "mean_displacement_x,mean_displacement_y,"
-                         "mean_displacement_z,rotation_x,rotation_y,rotation_z,"
-                         "contact_partners,die_contact\n";
+        const bool append = control.resume &&
+                            std::filesystem::exists(statistics_name) &&
+                            std::filesystem::exists(particle_name);
+        if (append)
+          {
+            truncate_rows(statistics_name, first_step - 1);
+            truncate_rows(particle_name, first_step - 1);
+          }
+        statistics_writer =
+          std::make_unique<StatisticsWriter>(statistics_name, append);
+        particle_file.open(particle_name,
+                           append ? std::ios::app : std::ios::trunc);
+        if (!append)
+          particle_file << "step,particle,material,volume,initial_volume,"
+                           "mean_displacement_x,mean_displacement_y,"
+                           "mean_displacement_z,rotation_x,rotation_y,"
+                           "rotation_z,contact_partners,die_contact\n";
       }
 
     const unsigned int n_steps = prm.time.n_steps;
-    for (unsigned int step = 1; step <= n_steps; ++step)
+    for (unsigned int step = first_step; step <= n_steps; ++step)
       {
         Timer          step_timer;
         const double   time  = prm.time.end_time * step / n_steps;
@@ -1289,12 +1329,13 @@ namespace densify
           write_graphics(step, time);
 
         s.step_seconds = step_timer.wall_time();
-        s.wall_seconds = wall.wall_time();
+        s.wall_seconds = wall_before + wall.wall_time();
         step_statistics.push_back(s);
         if (statistics_writer)
           statistics_writer->write(s);
 
-        const double left = s.wall_seconds / step * (n_steps - step);
+        const double left = (s.wall_seconds - wall_before) /
+                            (step + 1 - first_step) * (n_steps - step);
         pcout << "step " << step << "/" << n_steps
               << "  t=" << std::setprecision(4) << time << " s  punch "
               << s.punch_displacement << " mm  F_upper " << std::setprecision(5)
@@ -1313,10 +1354,34 @@ namespace densify
                 << " increments";
         pcout << ")  " << format_seconds(s.wall_seconds) << ", ~"
               << format_seconds(left) << " left" << std::endl;
+
+        // stop on request (every rank must agree) or write the periodic
+        // checkpoint
+        const bool signalled =
+          Utilities::MPI::max(control.stop_request != nullptr &&
+                                  *control.stop_request != 0 ?
+                                1 :
+                                0,
+                              comm) > 0;
+        const bool stop =
+          step < n_steps && (signalled || step == control.stop_after);
+        if (stop || (prm.output.checkpoint_interval > 0 && step < n_steps &&
+                     step % prm.output.checkpoint_interval == 0))
+          write_checkpoint(step, s.wall_seconds);
+        if (stop)
+          {
+            pcout << "Stopped after step " << step << "/" << n_steps
+                  << (signalled ? " on a signal" : " (--stop-after)")
+                  << "; checkpoint in " << prm.output.directory
+                  << "/checkpoint/; continue with --resume" << std::endl;
+            timer.print_summary();
+            return false;
+          }
       }
     pcout << "Finished " << n_steps << " steps in "
-          << format_seconds(wall.wall_time()) << "; results in "
+          << format_seconds(wall_before + wall.wall_time()) << "; results in "
           << prm.output.directory << "/" << std::endl;
     timer.print_summary();
+    return true;
   }
 } // namespace densify

@@ -183,6 +183,8 @@ namespace densify
     unsigned int interval = 1;
     /// Print the Newton iterations of every step.
     bool verbose = false;
+    /// Write a checkpoint every this many steps (0: only when stopped).
+    unsigned int checkpoint_interval = 25;
   };
 
   /// Every parameter of a run.
@@ -205,10 +207,22 @@ namespace densify
     /// Subsection "Output".
     OutputParameters output;
 
+    /**
+     * Every entry that shapes the results (all but subsection Output), one
+     * "Subsection/Name = value" per line, as read_parameters() leaves them.
+     * A checkpoint stores it and --resume refuses a different one. Empty
+     * unless set (then nothing is checked).
+     */
+    std::string fingerprint;
+
     /// Declare every entry (bound to the members above) in @p prm.
     void
     declare(ParameterHandler &prm);
   };
+
+  /// The Parameters::fingerprint of the entries in @p prm.
+  std::string
+  parameter_fingerprint(const ParameterHandler &prm);
 
   /**
    * Read @p filename into @p prm (declared by Parameters::declare) and apply

@@ -25,6 +25,7 @@
 #include <densify/solvers/linear_solver.h>
 
 #include <array>
+#include <csignal>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -33,6 +34,21 @@
 namespace densify
 {
   class NodalAveraging;
+
+  /**
+   * How a run may stop early and continue: the command line's --resume and
+   * --stop-after, and a signal handler's flag.
+   */
+  struct RunControl
+  {
+    /// Continue from the checkpoint in Output/Directory/checkpoint/.
+    bool resume = false;
+    /// Stop after this load step with a checkpoint (0: run to the end).
+    unsigned int stop_after = 0;
+    /// Set to non-zero by a signal handler: stop after the current load step
+    /// with a checkpoint. Not owned; may be null.
+    const volatile std::sig_atomic_t *stop_request = nullptr;
+  };
 
   /**
    * Runs one scene: builds the multi-body mesh of all particles, then for each
@@ -50,17 +66,22 @@ namespace densify
     /// is computed yet). The log goes to the console too if @p console.
     Simulator(const Parameters &parameters,
               const MPI_Comm    comm,
-              const bool        console = true);
+              const bool        console = true,
+              const RunControl &control = RunControl());
 
     /// Destructor; resets the timer so that an exception cannot deadlock.
     ~Simulator();
 
     /**
-     * Check the input, build the mesh and run every load step. Throws
-     * std::runtime_error with a one-line message on bad input or a failed
-     * solve; what was written before stays valid.
+     * Check the input, build the mesh and run every load step (from the
+     * checkpoint's next step with RunControl::resume). Writes a checkpoint
+     * every Output/Checkpoint interval steps. Returns false if it stopped
+     * early on request (RunControl), after writing a checkpoint; true when
+     * every step is done. Throws std::runtime_error with a one-line message
+     * on a failed solve, InputError on bad input (e.g. a checkpoint that
+     * does not fit the scene); what was written before stays valid.
      */
-    void
+    bool
     run();
 
     /// Set up particles, mesh and system without solving; run() calls it
@@ -230,6 +251,29 @@ namespace densify
     void
     write_graphics(const unsigned int step, const double time);
 
+    /**
+     * Write the state at the end of load step @p step (solution, last
+     * increment, quadrature-point history, contact multipliers and friction
+     * history, time and step control, graphics records) to
+     * Output/Directory/checkpoint/, one file per rank, replacing the previous
+     * checkpoint only once the new one is complete.
+     */
+    void
+    write_checkpoint(const unsigned int step, const double wall_seconds);
+
+    /**
+     * Load the checkpoint written by write_checkpoint() into the set-up
+     * system; returns its load step. Throws InputError if there is none or it
+     * belongs to another scene, mesh or number of ranks.
+     */
+    unsigned int
+    read_checkpoint();
+
+    /// Keep the rows of the CSV file @p filename up to load step @p step
+    /// (first column), so that a resumed run appends after them.
+    void
+    truncate_rows(const std::string &filename, const unsigned int step) const;
+
     /// Copy solution into the ghosted vector.
     void
     update_ghosts();
@@ -251,7 +295,11 @@ namespace densify
     /// Force of the pole springs at the last converged state (N).
     double last_pole_force = 0.;
 
-    const Parameters             &prm;
+    const Parameters &prm;
+    /// How the run may stop early and continue.
+    const RunControl control;
+    /// Wall time of the run before the checkpoint it resumed from (s).
+    double                        wall_before = 0.;
     MPI_Comm                      comm;
     const unsigned int            this_rank;
     std::ofstream                 log_file;
@@ -285,6 +333,9 @@ namespace densify
     /// allocated only if some material needs it.
     bool                       has_history = false;
     std::vector<MaterialState> committed_history, trial_history;
+    /// Material states per cell in the histories: one per quadrature point,
+    /// or one per corner with the nodal-averaged F-bar.
+    unsigned int history_per_cell = 0;
     /// Time and upper punch position of the last accepted increment.
     double current_time = 0., current_upper = 0.;
     /// Size of the next increment (s).

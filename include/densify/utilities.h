@@ -1,6 +1,7 @@
 // Small helpers shared by the executable and the library.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 namespace densify
@@ -12,4 +13,14 @@ namespace densify
    */
   std::string
   one_line(const std::string &text);
+
+  /**
+   * An error in what the user gave (parameters, files, command line) found
+   * while running; the executable exits with code 2 for it, as for a bad
+   * parameter file.
+   */
+  struct InputError : public std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
 } // namespace densify

@@ -6,13 +6,15 @@
 
 namespace densify
 {
-  StatisticsWriter::StatisticsWriter(const std::string &filename)
-    : out(filename)
+  StatisticsWriter::StatisticsWriter(const std::string &filename,
+                                     const bool         append)
+    : out(filename, append ? std::ios::app : std::ios::trunc)
   {
     if (!out)
       throw std::runtime_error("Output/Directory: cannot write '" + filename +
                                "'");
-    out << header() << std::endl;
+    if (!append)
+      out << header() << std::endl;
   }
 
 

@@ -11,6 +11,9 @@ for scene in "$SOURCE_DIR"/prm/*.prm; do
   extra=()
   case "$name" in
     seven_spheres_sn) extra=(--set "Tools/Upper punch/Displacement history=0:0, 1:0.04") ;;
+    # the paper's 43-sphere layer shrunk to its middle seven (die 7.52 mm)
+    single_layer_*) extra=(--set "Tools/Die wall/Diameter=7.52"
+                           --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04") ;;
   esac
   "$DENSIFY" "$scene" "${extra[@]}" \
     --set "Output/Directory=out_$name" \

@@ -191,6 +191,14 @@ namespace densify
       std::vector<double> slip;
       /// Committed tool translations.
       std::vector<Tensor<1, 3>> translation;
+
+      /// Write or read the state with a boost archive (checkpoints).
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int /*version*/)
+      {
+        archive &lambda &traction &slip &translation;
+      }
     };
 
     /// The state (multipliers and friction history).

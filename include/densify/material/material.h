@@ -23,6 +23,14 @@ namespace densify
     Tensor<2, 3> Cp_inv = unit_symmetric_tensor<3>();
     /// Accumulated equivalent plastic strain (dimensionless).
     double eps_p = 0.;
+
+    /// Write or read the state with a boost archive (checkpoints).
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int /*version*/)
+    {
+      archive &Cp_inv &eps_p;
+    }
   };
 
   /**

@@ -68,8 +68,9 @@ namespace densify
   class StatisticsWriter
   {
   public:
-    /// Open (truncate) @p filename and write the header.
-    explicit StatisticsWriter(const std::string &filename);
+    /// Open (truncate) @p filename and write the header; with @p append,
+    /// append rows to the existing file (a resumed run).
+    StatisticsWriter(const std::string &filename, const bool append = false);
 
     /// Append one row.
     void

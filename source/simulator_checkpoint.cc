@@ -1,0 +1,317 @@
+// Checkpoints of the Simulator: write the state at the end of a load step,
+// read it back to resume (densify --resume).
+//
+// The mesh is not stored: it is rebuilt from the same parameters (gmsh and
+// the METIS partition are deterministic for the same scene and number of
+// ranks), and the checkpoint records what identifies it (cells, DoFs, a sum
+// of the vertex coordinates, the ranks) to refuse a checkpoint of another
+// mesh. Each rank writes what it owns (vectors, quadrature-point history of
+// its cells, contact state of its contact points) into its own file with a
+// boost binary archive, as deal.II serializes its own classes.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <densify/simulator.h>
+#include <densify/utilities.h>
+
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace densify
+{
+  namespace
+  {
+    /// Increment when the layout of a checkpoint file changes.
+    constexpr unsigned int checkpoint_version = 1;
+
+    /// What identifies the mesh and the run a checkpoint belongs to.
+    struct CheckpointHeader
+    {
+      unsigned int            version  = checkpoint_version;
+      unsigned int            n_ranks  = 0;
+      unsigned int            rank     = 0;
+      unsigned int            n_cells  = 0;
+      types::global_dof_index n_dofs   = 0;
+      double                  vertices = 0.;
+      std::string             fingerprint;
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int /*version*/)
+      {
+        archive &version &n_ranks &rank &n_cells &n_dofs &vertices &fingerprint;
+      }
+    };
+
+    /// The locally owned entries of @p v, in the order of @p owned.
+    std::vector<double>
+    owned_values(const TrilinosWrappers::MPI::Vector &v, const IndexSet &owned)
+    {
+      std::vector<double> values;
+      values.reserve(owned.n_elements());
+      for (const types::global_dof_index i : owned)
+        values.push_back(v[i]);
+      return values;
+    }
+
+    /// Inverse of owned_values().
+    void
+    set_owned_values(const std::vector<double>     &values,
+                     const IndexSet                &owned,
+                     TrilinosWrappers::MPI::Vector &v)
+    {
+      AssertDimension(values.size(), owned.n_elements());
+      unsigned int k = 0;
+      for (const types::global_dof_index i : owned)
+        v[i] = values[k++];
+      v.compress(VectorOperation::insert);
+    }
+
+    /// The first line of @p a that @p b lacks, for an error message.
+    std::string
+    first_difference(const std::string &a, const std::string &b)
+    {
+      std::istringstream in_a(a), in_b(b);
+      for (std::string line_a, line_b; std::getline(in_a, line_a);)
+        if (!std::getline(in_b, line_b) || line_a != line_b)
+          return line_a;
+      return "";
+    }
+  } // namespace
+
+
+
+  void
+  Simulator::write_checkpoint(const unsigned int step,
+                              const double       wall_seconds)
+  {
+    TimerOutput::Scope t(timer, "Checkpoint");
+    namespace fs         = std::filesystem;
+    const fs::path dir   = prm.output.directory;
+    const fs::path fresh = dir / "checkpoint.new";
+    if (this_rank == 0)
+      {
+        fs::remove_all(fresh);
+        fs::create_directories(fresh);
+      }
+    MPI_Barrier(comm);
+
+    CheckpointHeader header;
+    header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
+    header.rank        = this_rank;
+    header.n_cells     = triangulation.n_active_cells();
+    header.n_dofs      = dof_handler.n_dofs();
+    header.fingerprint = prm.fingerprint;
+    for (const Point<3> &v : triangulation.get_vertices())
+      header.vertices += v[0] + v[1] + v[2];
+
+    bool written = false;
+    {
+      std::ofstream out(fresh / ("rank_" + std::to_string(this_rank) + ".bin"),
+                        std::ios::binary);
+      if (out)
+        {
+          boost::archive::binary_oarchive archive(out);
+          std::vector<double>             solution_values =
+            owned_values(solution, locally_owned);
+          std::vector<double> increment_values =
+            owned_values(last_increment, locally_owned);
+          // the history of this rank's cells
+          std::vector<MaterialState> history;
+          if (has_history)
+            {
+              const unsigned int n_q = history_per_cell;
+              for (const auto &cell : triangulation.active_cell_iterators())
+                if (cell->is_locally_owned())
+                  for (unsigned int q = 0; q < n_q; ++q)
+                    history.push_back(
+                      committed_history[cell->active_cell_index() * n_q + q]);
+            }
+          ToolContact::State     tools     = tool_contact.state();
+          ParticleContact::State contacts  = particle_contact.state();
+          unsigned int           last_step = step;
+          double                 wall      = wall_seconds;
+          archive &header &last_step &current_time &current_upper
+            &next_increment &last_punch_increment &wall &solution_values
+              &increment_values &history &tools &contacts &pvd_records;
+          written = static_cast<bool>(out);
+        }
+    }
+    if (Utilities::MPI::min(written ? 1 : 0, comm) == 0)
+      throw std::runtime_error("Output/Directory: cannot write the checkpoint "
+                               "into '" +
+                               fresh.string() + "'");
+
+    // replace the previous checkpoint only now that the new one is complete
+    if (this_rank == 0)
+      {
+        {
+          std::ofstream info(fresh / "info.txt");
+          info << "load step " << step << " of " << prm.time.n_steps
+               << ", time " << std::setprecision(10) << current_time
+               << ", written by " << header.n_ranks
+               << " MPI rank(s); continue with: densify FILE.prm --resume\n";
+        }
+        const fs::path current = dir / "checkpoint",
+                       old     = dir / "checkpoint.old";
+        fs::remove_all(old);
+        if (fs::exists(current))
+          fs::rename(current, old);
+        fs::rename(fresh, current);
+        fs::remove_all(old);
+      }
+    MPI_Barrier(comm);
+    pcout << "  checkpoint written after step " << step << std::endl;
+  }
+
+
+
+  unsigned int
+  Simulator::read_checkpoint()
+  {
+    namespace fs       = std::filesystem;
+    const fs::path dir = prm.output.directory;
+    // a run stopped between the two renames of write_checkpoint() left its
+    // last complete checkpoint in checkpoint.old
+    fs::path from = dir / "checkpoint";
+    if (!fs::exists(from / "info.txt") && fs::exists(dir / "checkpoint.old"))
+      from = dir / "checkpoint.old";
+    const fs::path file = from / ("rank_" + std::to_string(this_rank) + ".bin");
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+
+    std::ifstream in(file, std::ios::binary);
+    if (Utilities::MPI::min(in ? 1 : 0, comm) == 0)
+      throw InputError(
+        "--resume: no checkpoint '" + file.string() +
+        "' (Output/Directory holds none for this number of ranks); run "
+        "without --resume to start from the beginning");
+
+    CheckpointHeader           header;
+    unsigned int               step = 0;
+    double                     wall = 0.;
+    std::vector<double>        solution_values, increment_values;
+    std::vector<MaterialState> history;
+    ToolContact::State         tools;
+    ParticleContact::State     contacts;
+    try
+      {
+        boost::archive::binary_iarchive archive(in);
+        archive                        &header;
+        if (header.version != checkpoint_version)
+          throw InputError(
+            "--resume: checkpoint '" + file.string() + "' has format version " +
+            std::to_string(header.version) +
+            ", this densify "
+            "reads " +
+            std::to_string(checkpoint_version) + "; run without --resume");
+        if (header.n_ranks != n_ranks)
+          throw InputError(
+            "--resume: the checkpoint was written by " +
+            std::to_string(header.n_ranks) + " MPI rank(s), this run has " +
+            std::to_string(n_ranks) + "; resume with mpirun -np " +
+            std::to_string(header.n_ranks));
+        if (!prm.fingerprint.empty() && !header.fingerprint.empty() &&
+            header.fingerprint != prm.fingerprint)
+          throw InputError(
+            "--resume: the checkpoint was written with other parameters (it "
+            "has '" +
+            first_difference(header.fingerprint, prm.fingerprint) +
+            "', this run '" +
+            first_difference(prm.fingerprint, header.fingerprint) +
+            "'); resume with the parameters of the stopped run");
+        double vertices = 0;
+        for (const Point<3> &v : triangulation.get_vertices())
+          vertices += v[0] + v[1] + v[2];
+        if (header.n_cells != triangulation.n_active_cells() ||
+            header.n_dofs != dof_handler.n_dofs() ||
+            std::abs(header.vertices - vertices) >
+              1e-9 * (1 + std::abs(vertices)))
+          throw InputError("--resume: the checkpoint's mesh (" +
+                           std::to_string(header.n_cells) + " cells, " +
+                           std::to_string(header.n_dofs) +
+                           " DoFs) is not the one this scene makes; run "
+                           "without --resume");
+        archive &step &current_time &current_upper &next_increment
+          &last_punch_increment &wall &solution_values &increment_values
+            &history &tools &contacts &pvd_records;
+      }
+    catch (const InputError &)
+      {
+        throw;
+      }
+    catch (const std::exception &e)
+      {
+        throw InputError("--resume: cannot read the checkpoint '" +
+                         file.string() + "' (" + e.what() +
+                         "); run without --resume");
+      }
+
+    set_owned_values(solution_values, locally_owned, solution);
+    set_owned_values(increment_values, locally_owned, last_increment);
+    if (has_history)
+      {
+        const unsigned int n_q = history_per_cell;
+        unsigned int       k   = 0;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                AssertIndexRange(k, history.size());
+                committed_history[cell->active_cell_index() * n_q + q] =
+                  history[k++];
+              }
+        trial_history = committed_history;
+      }
+    tool_contact.set_state(tools);
+    if (has_particle_contact)
+      particle_contact.set_state(contacts);
+    wall_before       = wall;
+    committed_ghosted = solution;
+    update_ghosts();
+    if (has_particle_contact)
+      {
+        // the search of the loaded configuration, and its matrix pattern
+        particle_contact.update_search(solution_ghosted, search_margin);
+        setup_matrix();
+      }
+    pcout << "Resumed from the checkpoint after step " << step << " (time "
+          << current_time << ") in " << from.string() << "/" << std::endl;
+    return step;
+  }
+
+
+
+  void
+  Simulator::truncate_rows(const std::string &filename,
+                           const unsigned int step) const
+  {
+    std::ifstream            in(filename);
+    std::vector<std::string> kept;
+    for (std::string line; std::getline(in, line);)
+      {
+        // the header, and rows whose step (first column) is at most step
+        const std::string first = line.substr(0, line.find(','));
+        const bool        is_row =
+          !first.empty() &&
+          first.find_first_not_of("0123456789") == std::string::npos;
+        if (!is_row || std::stoul(first) <= step)
+          kept.push_back(line);
+      }
+    in.close();
+    const std::string tmp = filename + ".tmp";
+    {
+      std::ofstream out(tmp);
+      for (const std::string &line : kept)
+        out << line << '\n';
+    }
+    std::filesystem::rename(tmp, filename);
+  }
+} // namespace densify
