@@ -518,7 +518,8 @@ namespace densify
   parameter_fingerprint(const ParameterHandler &prm)
   {
     // the short PRM text ("subsection", "set Name = value", "end" lines),
-    // flattened to "Sub/Sub/Name = value"
+    // flattened to "Sub/Sub/Name = value"; Output and Solver may change
+    // between a run and its resumption (how to write, how hard to solve)
     std::ostringstream prm_text;
     prm.print_parameters(prm_text, ParameterHandler::ShortPRM);
     std::istringstream       in(prm_text.str());
@@ -532,7 +533,7 @@ namespace densify
         else if (line == "end" && !path.empty())
           path.pop_back();
         else if (line.rfind("set ", 0) == 0 &&
-                 (path.empty() || path[0] != "Output"))
+                 (path.empty() || (path[0] != "Output" && path[0] != "Solver")))
           {
             const std::string entry = line.substr(4);
             const auto        eq    = entry.find('=');

@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 namespace densify
@@ -75,15 +76,20 @@ namespace densify
       v.compress(VectorOperation::insert);
     }
 
-    /// The first line of @p a that @p b lacks, for an error message.
+    /// The first line of @p a that @p b lacks ("no such entry" if none),
+    /// for an error message.
     std::string
     first_difference(const std::string &a, const std::string &b)
     {
-      std::istringstream in_a(a), in_b(b);
-      for (std::string line_a, line_b; std::getline(in_a, line_a);)
-        if (!std::getline(in_b, line_b) || line_a != line_b)
-          return line_a;
-      return "";
+      std::set<std::string> lines_b;
+      std::istringstream    in_b(b);
+      for (std::string line; std::getline(in_b, line);)
+        lines_b.insert(line);
+      std::istringstream in_a(a);
+      for (std::string line; std::getline(in_a, line);)
+        if (lines_b.count(line) == 0)
+          return "'" + line + "'";
+      return "no other entry";
     }
   } // namespace
 
@@ -222,11 +228,11 @@ namespace densify
             header.fingerprint != prm.fingerprint)
           throw InputError(
             "--resume: the checkpoint was written with other parameters (it "
-            "has '" +
+            "has " +
             first_difference(header.fingerprint, prm.fingerprint) +
-            "', this run '" +
+            ", this run " +
             first_difference(prm.fingerprint, header.fingerprint) +
-            "'); resume with the parameters of the stopped run");
+            "); resume with the parameters of the stopped run");
         double vertices = 0;
         for (const Point<3> &v : triangulation.get_vertices())
           vertices += v[0] + v[1] + v[2];

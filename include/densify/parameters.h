@@ -208,7 +208,8 @@ namespace densify
     OutputParameters output;
 
     /**
-     * Every entry that shapes the results (all but subsection Output), one
+     * Every entry that shapes the scene (all but subsections Output and
+     * Solver, which say how to write and how to solve it), one
      * "Subsection/Name = value" per line, as read_parameters() leaves them.
      * A checkpoint stores it and --resume refuses a different one. Empty
      * unless set (then nothing is checked).
