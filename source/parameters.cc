@@ -518,8 +518,9 @@ namespace densify
   parameter_fingerprint(const ParameterHandler &prm)
   {
     // the short PRM text ("subsection", "set Name = value", "end" lines),
-    // flattened to "Sub/Sub/Name = value"; Output and Solver may change
-    // between a run and its resumption (how to write, how hard to solve)
+    // flattened to "Sub/Sub/Name = value"; Output, Solver and the friction
+    // tangent may change between a run and its resumption (how to write, how
+    // to solve)
     std::ostringstream prm_text;
     prm.print_parameters(prm_text, ParameterHandler::ShortPRM);
     std::istringstream       in(prm_text.str());
@@ -537,6 +538,10 @@ namespace densify
           {
             const std::string entry = line.substr(4);
             const auto        eq    = entry.find('=');
+            // the friction tangent is a choice of how to solve too
+            if (path.size() == 1 && path[0] == "Contact" &&
+                Utilities::trim(entry.substr(0, eq)) == "Friction tangent")
+              continue;
             for (const std::string &p : path)
               text << p << '/';
             text << Utilities::trim(entry.substr(0, eq)) << " = "
