@@ -125,30 +125,34 @@ namespace densify
                         std::ios::binary);
       if (out)
         {
-          boost::archive::binary_oarchive archive(out);
-          std::vector<double>             solution_values =
-            owned_values(solution, locally_owned);
-          std::vector<double> increment_values =
-            owned_values(last_increment, locally_owned);
-          // the history of this rank's cells
-          std::vector<MaterialState> history;
-          if (has_history)
-            {
-              const unsigned int n_q = history_per_cell;
-              for (const auto &cell : triangulation.active_cell_iterators())
-                if (cell->is_locally_owned())
-                  for (unsigned int q = 0; q < n_q; ++q)
-                    history.push_back(
-                      committed_history[cell->active_cell_index() * n_q + q]);
-            }
-          ToolContact::State     tools     = tool_contact.state();
-          ParticleContact::State contacts  = particle_contact.state();
-          unsigned int           last_step = step;
-          double                 wall      = wall_seconds;
-          archive &header &last_step &current_time &current_upper
-            &next_increment &last_punch_increment &wall &solution_values
-              &increment_values &history &tools &contacts &pvd_records;
-          written = static_cast<bool>(out);
+          {
+            boost::archive::binary_oarchive archive(out);
+            std::vector<double>             solution_values =
+              owned_values(solution, locally_owned);
+            std::vector<double> increment_values =
+              owned_values(last_increment, locally_owned);
+            // the history of this rank's cells
+            std::vector<MaterialState> history;
+            if (has_history)
+              {
+                const unsigned int n_q = history_per_cell;
+                for (const auto &cell : triangulation.active_cell_iterators())
+                  if (cell->is_locally_owned())
+                    for (unsigned int q = 0; q < n_q; ++q)
+                      history.push_back(
+                        committed_history[cell->active_cell_index() * n_q + q]);
+              }
+            ToolContact::State     tools     = tool_contact.state();
+            ParticleContact::State contacts  = particle_contact.state();
+            unsigned int           last_step = step;
+            double                 wall      = wall_seconds;
+            archive &header &last_step &current_time &current_upper
+              &next_increment &last_punch_increment &wall &solution_values
+                &increment_values &history &tools &contacts &pvd_records;
+          }
+          // complete on disk only once the stream is flushed and closed
+          out.close();
+          written = !out.fail();
         }
     }
     if (Utilities::MPI::min(written ? 1 : 0, comm) == 0)
