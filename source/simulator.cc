@@ -599,9 +599,16 @@ namespace densify
     const double floor = 1e-12 * E_max * D_max * D_max;
     const double tol   = prm.solver.newton_tolerance;
 
-    unsigned int   linear_iterations = 0;
-    AssemblyResult current           = assemble(true, margin);
-    double         line_search_step  = 1.;
+    unsigned int linear_iterations = 0;
+    // each Newton solve starts from the closest master facets; within it a
+    // slave point keeps its facet while it stays near (hysteresis)
+    if (has_particle_contact)
+      particle_contact.reset_projections();
+    AssemblyResult current = assemble(true, margin);
+    if (has_particle_contact &&
+        particle_contact.update_projections(*mapping, solution_ghosted))
+      current = assemble(true, margin);
+    double line_search_step = 1.;
     residual_history.clear();
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
@@ -675,7 +682,10 @@ namespace densify
           pcout << "      line search: max|du| " << std::setprecision(3)
                 << max_step << " mm, step " << s << ", "
                 << trial.contact.n_active << " contact points" << std::endl;
-        current          = have_matrix ? trial : assemble(true);
+        const bool reassigned =
+          has_particle_contact &&
+          particle_contact.update_projections(*mapping, solution_ghosted);
+        current = (have_matrix && !reassigned) ? trial : assemble(true);
         line_search_step = s;
       }
     std::ostringstream msg;

@@ -127,6 +127,7 @@ namespace densify
     lambda.assign(n_points, 0.);
     committed_traction.assign(friction.mu > 0 ? n_points : 0, Tensor<1, 3>());
     accumulated_slip.assign(friction.mu > 0 ? n_points : 0, 0.);
+    assigned.assign(n_points, numbers::invalid_unsigned_int);
   }
 
 
@@ -269,6 +270,7 @@ namespace densify
   ParticleContact::project(const Point<3>              &x,
                            const unsigned int           m,
                            const std::vector<Point<3>> &vertices,
+                           const double                 band,
                            double                      &distance_squared) const
   {
     const Facet            &facet = facets[m];
@@ -277,7 +279,23 @@ namespace densify
       c[k] = vertices[facet.cell->vertex_index(facet.local_vertex[k])];
     Projection result;
     result.facet = m;
-    result.bary  = closest_on_triangle(x, c[0], c[1], c[2]);
+    if (band == 0.)
+      result.bary = closest_on_triangle(x, c[0], c[1], c[2]);
+    else
+      {
+        // the triangle scaled by s about its centroid g: a point with
+        // coordinates b' there has b = s b' - band here
+        const double                s = 1. + 3. * band;
+        const Point<3>              g((c[0][0] + c[1][0] + c[2][0]) / 3.,
+                         (c[0][1] + c[1][1] + c[2][1]) / 3.,
+                         (c[0][2] + c[1][2] + c[2][2]) / 3.);
+        const std::array<double, 3> b = closest_on_triangle(x,
+                                                            g + s * (c[0] - g),
+                                                            g + s * (c[1] - g),
+                                                            g + s * (c[2] - g));
+        for (unsigned int k = 0; k < 3; ++k)
+          result.bary[k] = s * b[k] - band;
+      }
     const Point<3> y =
       result.bary[0] * c[0] + result.bary[1] * c[1] + result.bary[2] * c[2];
     distance_squared = (x - y).norm_square();
@@ -374,23 +392,62 @@ namespace densify
             double       p_out = 0, slip_out = 0, status_out = 0;
             if (begin < end)
               {
-                // the closest candidate facet
                 const Point<3> x_s = fe_face.quadrature_point(q) + u_values[q];
-                Projection     best;
-                double best_distance = std::numeric_limits<double>::max();
-                for (unsigned int c = begin; c < end; ++c)
+                const unsigned int idx = k * n_q + q;
+                const unsigned int kept =
+                  (out.new_assignment != nullptr || assigned.empty()) ?
+                    numbers::invalid_unsigned_int :
+                    assigned[idx];
+                Projection best;
+                double     best_distance = std::numeric_limits<double>::max();
+                if (kept != numbers::invalid_unsigned_int)
+                  best =
+                    project(x_s, kept, x_now, projection_band, best_distance);
+                else
                   {
-                    double           d2;
-                    const Projection pr =
-                      project(x_s, candidates[c], x_now, d2);
-                    if (d2 < best_distance)
+                    // the closest candidate facet
+                    for (unsigned int c = begin; c < end; ++c)
                       {
-                        best_distance = d2;
-                        best          = pr;
+                        double           d2;
+                        const Projection pr =
+                          project(x_s, candidates[c], x_now, 0., d2);
+                        if (d2 < best_distance)
+                          {
+                            best_distance = d2;
+                            best          = pr;
+                          }
                       }
+                    const unsigned int old = assigned[idx];
+                    if (out.new_assignment != nullptr &&
+                        old != numbers::invalid_unsigned_int &&
+                        old != best.facet)
+                      {
+                        // hysteresis: keep the old facet while the point
+                        // projects into its enlarged facet and no other is
+                        // closer by more than that band
+                        double           d2;
+                        const Projection pr =
+                          project(x_s, old, x_now, projection_band, d2);
+                        const double inside =
+                          std::min({pr.bary[0], pr.bary[1], pr.bary[2]});
+                        double size = 0;
+                        for (unsigned int a = 0; a < 3; ++a)
+                          size =
+                            std::max(size,
+                                     (x_now[facets[old].cell->vertex_index(
+                                        facets[old].local_vertex[a])] -
+                                      x_now[facets[old].cell->vertex_index(
+                                        facets[old].local_vertex[(a + 1) % 3])])
+                                       .norm());
+                        if (inside > -projection_band * (1. - 1e-9) &&
+                            std::sqrt(d2) <=
+                              std::sqrt(best_distance) + projection_band * size)
+                          best = pr;
+                      }
+                    if (out.new_assignment != nullptr)
+                      (*out.new_assignment)[idx] = best.facet;
                   }
-                const Facet       &master = facets[best.facet];
-                const unsigned int idx    = k * n_q + q;
+                const Facet &master = facets[best.facet];
                 // master point and displacement by the master's shape
                 // functions at the projection
                 Point<3> xi;
@@ -541,6 +598,24 @@ namespace densify
     out.matrix         = matrix;
     out.tangent_margin = tangent_margin;
     return loop(mapping, solution, out);
+  }
+
+
+
+  bool
+  ParticleContact::update_projections(
+    const Mapping<3>                    &mapping,
+    const TrilinosWrappers::MPI::Vector &solution)
+  {
+    std::vector<unsigned int> new_assignment(assigned.size(),
+                                             numbers::invalid_unsigned_int);
+    Outputs                   out;
+    out.new_assignment = &new_assignment;
+    loop(mapping, solution, out);
+    const bool changed = (new_assignment != assigned);
+    assigned.swap(new_assignment);
+    return Utilities::MPI::max(changed ? 1 : 0,
+                               dof_handler->get_communicator()) == 1;
   }
 
 

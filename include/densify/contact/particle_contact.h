@@ -131,6 +131,33 @@ namespace densify
              TrilinosWrappers::SparseMatrix      *matrix,
              const double                         tangent_margin = 0.) const;
 
+    /**
+     * Forget the master facets assigned to the slave points: the next
+     * evaluation projects each point onto the closest candidate facet.
+     * Called at the start of every Newton solve.
+     */
+    void
+    reset_projections()
+    {
+      std::fill(assigned.begin(),
+                assigned.end(),
+                numbers::invalid_unsigned_int);
+    }
+
+    /**
+     * Assign a master facet to every slave point at @p solution, with
+     * hysteresis: a point keeps its facet while its projection stays within
+     * the facet enlarged by #projection_band of its size beyond each edge
+     * (and no other facet is closer by more than that band); otherwise it
+     * takes the closest candidate facet. Evaluations between two calls use
+     * the assigned facets (enlarged), so the residual stays smooth while a
+     * point slides across a facet edge, instead of jumping with the facet
+     * normal. Returns whether any assignment changed (on every rank).
+     */
+    bool
+    update_projections(const Mapping<3>                    &mapping,
+                       const TrilinosWrappers::MPI::Vector &solution);
+
     /// Forces and penetration only.
     ParticleContactResult
     evaluate(const Mapping<3>                    &mapping,
@@ -213,6 +240,7 @@ namespace densify
       std::set<std::pair<unsigned, unsigned>> *pairs          = nullptr;
       const DoFHandler<3>                     *post           = nullptr;
       SurfaceFieldSums                        *sums           = nullptr;
+      std::vector<unsigned int>               *new_assignment = nullptr;
     };
 
     /// One pass over the slave points; the core of the class.
@@ -225,13 +253,19 @@ namespace densify
     std::vector<Point<3>>
     current_vertices(const TrilinosWrappers::MPI::Vector &solution) const;
 
-    /// Closest point of the facet @p m to @p x in the current configuration
-    /// @p vertices.
+    /// Closest point to @p x of the facet @p m in the current configuration
+    /// @p vertices, enlarged about its centroid so that the barycentric
+    /// coordinates reach down to -@p band (0: the facet itself).
     Projection
     project(const Point<3>              &x,
             const unsigned int           m,
             const std::vector<Point<3>> &vertices,
+            const double                 band,
             double                      &distance_squared) const;
+
+    /// How far beyond its edges a slave point keeps its master facet, in
+    /// barycentric coordinates (update_projections()).
+    static constexpr double projection_band = 0.1;
 
     const DoFHandler<3>                 *dof_handler        = nullptr;
     const TrilinosWrappers::MPI::Vector *committed_solution = nullptr;
@@ -262,5 +296,8 @@ namespace densify
     std::vector<double>       lambda;
     std::vector<Tensor<1, 3>> committed_traction;
     std::vector<double>       accumulated_slip;
+    /// The master facet assigned to each slave point
+    /// (numbers::invalid_unsigned_int: the closest candidate).
+    std::vector<unsigned int> assigned;
   };
 } // namespace densify
