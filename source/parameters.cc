@@ -332,13 +332,18 @@ namespace densify
         contact.hold_poles,
         "true: horizontal springs (stiffness Penalty factor * E * h, in both "
         "residual and tangent) hold the top and bottom pole vertices of every "
-        "particle on the vertical line through its centre. For frictionless "
-        "scenes whose exact solution is axisymmetric (one sphere between "
-        "punches): at finite strain a faceted sphere can otherwise turn a "
-        "facet towards a punch at no cost, and its tipping makes Newton "
-        "stall (doc/roadmap.md). The springs' force is reported as "
-        "pole_force in statistics.csv and in the log; it vanishes for an "
-        "axisymmetric state. false: no springs.");
+        "particle on the vertical line through its initial centre, for "
+        "frictionless scenes whose exact solution is axisymmetric (one sphere "
+        "or a vertical stack between punches): at finite strain a faceted "
+        "sphere can otherwise turn a facet towards a punch at no cost, and "
+        "its tipping makes Newton stall (doc/theory.md). vertical: springs "
+        "of the same stiffness between the two poles of each particle keep "
+        "the axis through them vertical but let the particle move sideways, "
+        "for frictionless layers whose exact solution is symmetric about "
+        "each particle's mid-plane. The springs' force is reported as "
+        "pole_force in statistics.csv and in the log; it vanishes for a "
+        "state with that symmetry. false: no springs.",
+        Patterns::Selection("false|true|vertical"));
     }
     prm.leave_subsection();
 

@@ -247,7 +247,7 @@ namespace densify
           }
         scene.tool_friction[t] = mu;
       }
-    if (prm.contact.hold_poles)
+    if (prm.contact.hold_poles != "false")
       {
         bool rough = false;
         for (const double mu : scene.tool_friction)
@@ -257,14 +257,17 @@ namespace densify
             "Contact/Hold poles on axis is for frictionless scenes: set "
             "Contact/Friction coefficient = 0 (and no tool Friction "
             "coefficient above 0), or switch it off");
-        // one particle, or a stack on one vertical line (axisymmetric)
+        // true: one particle, or a stack on one vertical line
+        // (axisymmetric); vertical: any layout
         for (const Particle &p : scene.particles)
-          if (std::hypot(p.centre[0] - scene.particles[0].centre[0],
-                         p.centre[1] - scene.particles[0].centre[1]) >
-              1e-9 * scene.particles[0].diameter)
-            throw std::runtime_error(
-              "Contact/Hold poles on axis is for one particle or a stack of "
-              "particles on one vertical line: switch it off in this scene");
+          if (prm.contact.hold_poles == "true")
+            if (std::hypot(p.centre[0] - scene.particles[0].centre[0],
+                           p.centre[1] - scene.particles[0].centre[1]) >
+                1e-9 * scene.particles[0].diameter)
+              throw std::runtime_error(
+                "Contact/Hold poles on axis = true is for one particle or a "
+                "stack of particles on one vertical line: use 'vertical' (the "
+                "particles may move sideways) or false in this scene");
       }
     if (prm.contact.contact_points == "vertices" && prm.mesh.degree != 1)
       throw std::runtime_error(

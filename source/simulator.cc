@@ -225,11 +225,13 @@ namespace densify
     locally_owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
-    // masters of particle contact may lie on any rank's cells
+    // masters of particle contact, and the partner of a vertical pole
+    // spring, may lie on any rank's cells
     has_particle_contact = particles.size() > 1;
-    ghosted_dofs         = has_particle_contact ?
-                             complete_index_set(dof_handler.n_dofs()) :
-                             locally_relevant;
+    ghosted_dofs =
+      (has_particle_contact || prm.contact.hold_poles == "vertical") ?
+        complete_index_set(dof_handler.n_dofs()) :
+        locally_relevant;
 
     solution.reinit(locally_owned, comm);
     increment.reinit(locally_owned, comm);
@@ -338,13 +340,14 @@ namespace densify
       }
     if (has_particle_contact)
       particle_contact.add_couplings(sp);
+    setup_pole_springs();
+    add_pole_couplings(sp);
     sp.compress();
     tangent.reinit(sp);
     stabilisation.reinit(sp);
     setup_stabilisation();
     if (linear_solver)
       linear_solver->rebuild_preconditioner();
-    setup_pole_springs();
   }
 
 
@@ -1352,7 +1355,7 @@ namespace densify
               << s.upper_punch_force << " N  F_lower " << s.lower_punch_force
               << " N  F_die " << s.die_wall_radial_force << " N  F_stab "
               << std::setprecision(2) << s.stabilisation_force << " N";
-        if (prm.contact.hold_poles)
+        if (prm.contact.hold_poles != "false")
           pcout << "  F_pole " << std::setprecision(2) << s.pole_force << " N";
         if (has_density)
           pcout << "  density " << std::setprecision(4)

@@ -1,7 +1,10 @@
 // Pole springs of the Simulator (Contact/Hold poles on axis): horizontal
-// springs that hold the top and bottom pole vertex of every particle on the
-// vertical line through its centre.
+// springs on the top and bottom pole vertex of every particle, holding them
+// on the vertical line through its centre (true) or keeping the axis through
+// them vertical (vertical).
 #include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/full_matrix.h>
 
 #include <densify/simulator.h>
 
@@ -13,43 +16,72 @@ namespace densify
   Simulator::setup_pole_springs()
   {
     pole_springs.clear();
-    if (!prm.contact.hold_poles)
+    if (prm.contact.hold_poles == "false")
       return;
-    // the stiffness of a penalty contact on an element face: penalty * h^2
-    std::vector<bool> seen(dof_handler.n_dofs(), false);
+    // the pole vertices' horizontal DoFs of each particle: [p][top?][d]. The
+    // shared triangulation knows every cell, so every rank finds all of them
+    constexpr types::global_dof_index none = numbers::invalid_dof_index;
+    std::vector<std::array<std::array<types::global_dof_index, 2>, 2>> pole(
+      particles.size(), {{{{none, none}}, {{none, none}}}});
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int p = cell->material_id();
-          const double       R = particles[p].diameter / 2;
-          const double       k = prm.contact.penalty_factor *
-                           particle_material[p]->youngs_modulus() * h_min;
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const Tensor<1, 3> r = cell->vertex(v) - particles[p].centre;
-              if (std::abs(std::abs(r[2]) - R) > 1e-8 * R ||
-                  r[0] * r[0] + r[1] * r[1] > 1e-16 * R * R)
-                continue;
-              for (unsigned int d = 0; d < 2; ++d)
-                {
-                  const types::global_dof_index i =
-                    cell->vertex_dof_index(v, d);
-                  if (locally_owned.is_element(i) && !seen[i])
-                    {
-                      seen[i] = true;
-                      pole_springs.emplace_back(i, k);
-                    }
-                }
-            }
-        }
-    const unsigned int n =
-      Utilities::MPI::sum(static_cast<unsigned int>(pole_springs.size()), comm);
-    if (n != 4 * particles.size())
+      {
+        const unsigned int p = cell->material_id();
+        const double       R = particles[p].diameter / 2;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const Tensor<1, 3> r = cell->vertex(v) - particles[p].centre;
+            if (std::abs(std::abs(r[2]) - R) > 1e-8 * R ||
+                r[0] * r[0] + r[1] * r[1] > 1e-16 * R * R)
+              continue;
+            for (unsigned int d = 0; d < 2; ++d)
+              pole[p][r[2] > 0 ? 1 : 0][d] = cell->vertex_dof_index(v, d);
+          }
+      }
+    // the stiffness of a penalty contact on an element face: penalty * h^2
+    unsigned int n_found = 0;
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        const double k = prm.contact.penalty_factor *
+                         particle_material[p]->youngs_modulus() * h_min;
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            const types::global_dof_index bottom = pole[p][0][d],
+                                          top    = pole[p][1][d];
+            n_found += (bottom != none) + (top != none);
+            if (bottom == none || top == none)
+              continue;
+            if (prm.contact.hold_poles == "vertical")
+              {
+                // one spring between the poles, added by the owner of one
+                if (locally_owned.is_element(top))
+                  pole_springs.push_back({top, bottom, k});
+              }
+            else
+              for (const types::global_dof_index i : {bottom, top})
+                if (locally_owned.is_element(i))
+                  pole_springs.push_back({i, none, k});
+          }
+      }
+    if (n_found != 4 * particles.size())
       throw std::runtime_error(
-        "Contact/Hold poles on axis: found " + std::to_string(n / 2) +
+        "Contact/Hold poles on axis: found " + std::to_string(n_found / 2) +
         " pole vertices for " + std::to_string(particles.size()) +
         " particle(s); the poles must be mesh vertices (they are for the "
         "gmsh spheres of Densify)");
+  }
+
+
+
+  void
+  Simulator::add_pole_couplings(TrilinosWrappers::SparsityPattern &pattern)
+  {
+    for (const PoleSpring &s : pole_springs)
+      if (s.j != numbers::invalid_dof_index)
+        {
+          pattern.add(s.i, s.j);
+          pattern.add(s.j, s.i);
+          pattern.add(s.j, s.j);
+        }
   }
 
 
@@ -58,14 +90,32 @@ namespace densify
   Simulator::add_pole_springs(const bool with_matrix)
   {
     double force2 = 0;
-    for (const auto &[i, k] : pole_springs)
-      {
-        const double f = k * solution(i);
-        residual(i) += f;
-        force2 += f * f;
-        if (with_matrix)
-          tangent.add(i, i, k);
-      }
+    for (const PoleSpring &s : pole_springs)
+      if (s.j == numbers::invalid_dof_index)
+        {
+          // towards zero
+          const double f = s.k * solution(s.i);
+          residual(s.i) += f;
+          force2 += f * f;
+          if (with_matrix)
+            tangent.add(s.i, s.i, s.k);
+        }
+      else
+        {
+          // between two poles (the bottom one may belong to another rank)
+          const double f =
+            s.k * (solution_ghosted(s.i) - solution_ghosted(s.j));
+          const std::vector<types::global_dof_index> dofs = {s.i, s.j};
+          residual.add(dofs, std::vector<double>{f, -f});
+          force2 += f * f;
+          if (with_matrix)
+            {
+              FullMatrix<double> k(2, 2);
+              k(0, 0) = k(1, 1) = s.k;
+              k(0, 1) = k(1, 0) = -s.k;
+              tangent.add(dofs, k);
+            }
+        }
     return std::sqrt(Utilities::MPI::sum(force2, comm));
   }
 } // namespace densify

@@ -137,10 +137,11 @@ namespace densify
     /// Where contact is evaluated on particle surfaces: "auto" (vertices for
     /// P1, Gauss points for P2), "vertices" or "Gauss points".
     std::string contact_points = "auto";
-    /// Hold the top and bottom pole vertices of every particle on its
-    /// vertical axis by horizontal springs (frictionless single-particle
-    /// scenes; doc/theory.md).
-    bool hold_poles = false;
+    /// Horizontal springs on the top and bottom pole vertices of every
+    /// particle (frictionless scenes; doc/theory.md): "false" (none), "true"
+    /// (on the vertical line through the initial centre) or "vertical" (the
+    /// axis through the two poles stays vertical; the particle may move).
+    std::string hold_poles = "false";
   };
 
   /// Subsection "Time stepping": load steps.

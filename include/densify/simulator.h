@@ -278,10 +278,14 @@ namespace densify
     void
     update_ghosts();
 
-    /// Find the locally owned horizontal DoFs of the pole vertices of every
-    /// particle (Contact/Hold poles on axis); called by setup_system().
+    /// Find the horizontal DoFs of the pole vertices of every particle
+    /// (Contact/Hold poles on axis); called by setup_matrix().
     void
     setup_pole_springs();
+
+    /// Add the matrix entries of the springs between two poles.
+    void
+    add_pole_couplings(TrilinosWrappers::SparsityPattern &pattern);
 
     /// Add the pole springs to the residual (and to the tangent if
     /// @p with_matrix); returns the l2 norm of their forces (N), on every
@@ -289,9 +293,16 @@ namespace densify
     double
     add_pole_springs(const bool with_matrix);
 
-    /// Locally owned horizontal DoFs of the pole vertices and the spring
-    /// stiffness of each (N/mm).
-    std::vector<std::pair<types::global_dof_index, double>> pole_springs;
+    /// A pole spring: stiffness k (N/mm) on the horizontal DoF i, towards
+    /// zero (Hold poles on axis = true) or towards DoF j (vertical).
+    struct PoleSpring
+    {
+      types::global_dof_index i = 0;
+      types::global_dof_index j = numbers::invalid_dof_index;
+      double                  k = 0.;
+    };
+    /// The pole springs this rank adds (each spring on one rank).
+    std::vector<PoleSpring> pole_springs;
     /// Force of the pole springs at the last converged state (N).
     double last_pole_force = 0.;
 
