@@ -54,6 +54,11 @@ expect "locking remedy on P2" "nodal averaging needs Mesh/Polynomial degree = 1"
 expect "unknown option" "unknown option" "$DENSIFY" good.prm --frobnicate
 expect "bad displacement table" "Displacement history" "$DENSIFY" good.prm \
   --set "Tools/Upper punch/Displacement history=0:0, 0:1"
+expect "pole springs on the axis in a layer" "use 'vertical'" "$DENSIFY" good.prm \
+  --set "Particles/Centres=0,0,1.25; 3,0,1.25" --set "Particles/Diameters=2.5" \
+  --set "Contact/Friction coefficient=0" --set "Contact/Hold poles on axis=true"
+expect "pole springs with friction" "frictionless" "$DENSIFY" good.prm \
+  --set "Contact/Hold poles on axis=vertical"
 expect "bad --set syntax" "Subsection/Name=value" "$DENSIFY" good.prm --set "Particles/Diameters"
 # under MPI: every rank stops, one message, no hang
 expect "overlap under mpirun -np 2" "overlap" "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" good.prm \
