@@ -422,14 +422,12 @@ namespace densify
                         old != numbers::invalid_unsigned_int &&
                         old != best.facet)
                       {
-                        // hysteresis: keep the old facet while the point
-                        // projects into its enlarged facet and no other is
-                        // closer by more than that band
+                        // hysteresis: keep the old facet (enlarged by the
+                        // band) while it is no farther than the closest one
+                        // plus the band times its size
                         double           d2;
                         const Projection pr =
                           project(x_s, old, x_now, projection_band, d2);
-                        const double inside =
-                          std::min({pr.bary[0], pr.bary[1], pr.bary[2]});
                         double size = 0;
                         for (unsigned int a = 0; a < 3; ++a)
                           size =
@@ -439,9 +437,8 @@ namespace densify
                                       x_now[facets[old].cell->vertex_index(
                                         facets[old].local_vertex[(a + 1) % 3])])
                                        .norm());
-                        if (inside > -projection_band * (1. - 1e-9) &&
-                            std::sqrt(d2) <=
-                              std::sqrt(best_distance) + projection_band * size)
+                        if (std::sqrt(d2) <=
+                            std::sqrt(best_distance) + projection_band * size)
                           best = pr;
                       }
                     if (out.new_assignment != nullptr)
@@ -491,6 +488,9 @@ namespace densify
                                        friction.tangential_ratio * eps,
                                        friction);
                 const double p = r.pressure;
+                if (out.n_changed != nullptr && p > 0. &&
+                    assigned[idx] != best.facet)
+                  ++(*out.n_changed);
                 if (out.new_lambda != nullptr)
                   (*out.new_lambda)[idx] = p;
                 if (out.new_traction != nullptr && friction_on)
@@ -609,13 +609,13 @@ namespace densify
   {
     std::vector<unsigned int> new_assignment(assigned.size(),
                                              numbers::invalid_unsigned_int);
+    unsigned int              n_changed = 0;
     Outputs                   out;
     out.new_assignment = &new_assignment;
+    out.n_changed      = &n_changed;
     loop(mapping, solution, out);
-    const bool changed = (new_assignment != assigned);
     assigned.swap(new_assignment);
-    return Utilities::MPI::max(changed ? 1 : 0,
-                               dof_handler->get_communicator()) == 1;
+    return Utilities::MPI::max(n_changed, dof_handler->get_communicator()) > 0;
   }
 
 
