@@ -380,9 +380,12 @@ namespace densify
         "the six rigid-body modes (scales to large problems); gmres-amg: "
         "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
         "tangent = consistent); direct: Amesos MUMPS (small problems only); "
-        "auto: gmres-amg where friction acts with the consistent tangent, "
-        "cg-amg otherwise.",
-        Patterns::Selection("auto|cg-amg|gmres-amg|direct"));
+        "gmres-lu: GMRES preconditioned by the MUMPS factorization of an "
+        "earlier tangent, factorized anew when GMRES needs more than 20 "
+        "iterations (saves most factorizations where the tangent changes "
+        "little between Newton iterations and steps); auto: gmres-amg where "
+        "friction acts with the consistent tangent, cg-amg otherwise.",
+        Patterns::Selection("auto|cg-amg|gmres-amg|direct|gmres-lu"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,
                         "CG stops when the residual falls below this times "

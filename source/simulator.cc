@@ -343,11 +343,13 @@ namespace densify
     setup_pole_springs();
     add_pole_couplings(sp);
     sp.compress();
+    // the preconditioner (or factorization) refers to the old matrix: free
+    // it before the matrix goes
+    if (linear_solver)
+      linear_solver->rebuild_preconditioner();
     tangent.reinit(sp);
     stabilisation.reinit(sp);
     setup_stabilisation();
-    if (linear_solver)
-      linear_solver->rebuild_preconditioner();
   }
 
 

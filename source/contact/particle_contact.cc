@@ -422,12 +422,14 @@ namespace densify
                         old != numbers::invalid_unsigned_int &&
                         old != best.facet)
                       {
-                        // hysteresis: keep the old facet (enlarged by the
-                        // band) while it is no farther than the closest one
-                        // plus the band times its size
+                        // hysteresis: keep the old facet while the point
+                        // projects into it enlarged by the band, and no
+                        // other facet is closer by more than that band
                         double           d2;
                         const Projection pr =
                           project(x_s, old, x_now, projection_band, d2);
+                        const double inside =
+                          std::min({pr.bary[0], pr.bary[1], pr.bary[2]});
                         double size = 0;
                         for (unsigned int a = 0; a < 3; ++a)
                           size =
@@ -437,8 +439,9 @@ namespace densify
                                       x_now[facets[old].cell->vertex_index(
                                         facets[old].local_vertex[(a + 1) % 3])])
                                        .norm());
-                        if (std::sqrt(d2) <=
-                            std::sqrt(best_distance) + projection_band * size)
+                        if (inside > -projection_band * (1. - 1e-9) &&
+                            std::sqrt(d2) <=
+                              std::sqrt(best_distance) + projection_band * size)
                           best = pr;
                       }
                     if (out.new_assignment != nullptr)

@@ -1,8 +1,10 @@
-// The linear solver of each Newton step: CG with ML AMG fed the rigid-body
-// modes, or a direct solver.
+// The linear solver of each Newton step: CG (or GMRES) with ML AMG fed the
+// rigid-body modes, a direct solver, or GMRES preconditioned by the
+// factorization of an earlier tangent.
 #include <deal.II/base/quadrature.h>
 
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <deal.II/fe/fe_values.h>
@@ -92,6 +94,9 @@ namespace densify
         solver.solve(matrix, x, b);
         return 1;
       }
+
+    if (type == "gmres-lu")
+      return solve_with_factorization(matrix, x, b, control);
 
     const bool stale =
       !reuse_amg || !amg || last_iterations > 2 * iterations_after_setup + 10;
@@ -202,6 +207,57 @@ namespace densify
         TrilinosWrappers::SolverCG cg(control);
         cg.solve(matrix, x, b, *amg);
       }
+  }
+
+
+
+  unsigned int
+  LinearSolver::solve_with_factorization(
+    const TrilinosWrappers::SparseMatrix &matrix,
+    TrilinosWrappers::MPI::Vector        &x,
+    const TrilinosWrappers::MPI::Vector  &b,
+    SolverControl                        &control)
+  {
+    if (factorization)
+      {
+        // the old factors as a right preconditioner: the residual GMRES
+        // measures is the true one
+        TimerOutput::Scope t(timer, "Solve: GMRES with old factors");
+        struct OldFactors
+        {
+          TrilinosWrappers::SolverDirect *direct;
+          void
+          vmult(TrilinosWrappers::MPI::Vector       &dst,
+                const TrilinosWrappers::MPI::Vector &src) const
+          {
+            direct->solve(dst, src);
+          }
+        } preconditioner{factorization.get()};
+        SolverControl short_control(max_reuse_iterations, control.tolerance());
+        SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+          short_control,
+          SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+            max_reuse_iterations + 2, true));
+        try
+          {
+            x = 0;
+            gmres.solve(matrix, x, b, preconditioner);
+            last_iterations = short_control.last_step();
+            return last_iterations;
+          }
+        catch (const SolverControl::NoConvergence &)
+          {}
+      }
+    TimerOutput::Scope t(timer, "Solve: direct");
+    factorization_control = std::make_unique<SolverControl>(1, 0.);
+    factorization         = std::make_unique<TrilinosWrappers::SolverDirect>(
+      *factorization_control,
+      TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
+    factorization->initialize(matrix);
+    ++n_factorized;
+    factorization->solve(x, b);
+    last_iterations = 1;
+    return 1;
   }
 
 

@@ -146,14 +146,14 @@ namespace densify
 
     /**
      * Assign a master facet to every slave point at @p solution, with
-     * hysteresis: a point keeps its facet, enlarged about its centroid by
-     * #projection_band of its size beyond each edge, while that is no
-     * farther from the point than the closest candidate facet plus the band
-     * times the facet's size; otherwise it takes the closest candidate
-     * facet. Evaluations between two calls use the assigned facets, so the
-     * residual stays continuous while a point slides across a facet edge
-     * instead of jumping with the facet normal. Returns whether a point in
-     * contact changed its facet (on every rank).
+     * hysteresis: a point keeps its facet while its projection stays within
+     * the facet enlarged about its centroid by #projection_band of its size
+     * beyond each edge, and no other candidate facet is closer by more than
+     * that band times the facet's size; otherwise it takes the closest
+     * candidate facet. Evaluations between two calls use the assigned
+     * facets (enlarged), so the residual stays continuous while a point
+     * slides across a facet edge instead of jumping with the facet normal.
+     * Returns whether a point in contact changed its facet (on every rank).
      */
     bool
     update_projections(const Mapping<3>                    &mapping,

@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -45,11 +46,20 @@ namespace densify
                  const bool         reuse_amg,
                  TimerOutput       &timer);
 
-    /// Build the AMG hierarchy anew at the next solve.
+    /// Build the AMG hierarchy (or the factorization of gmres-lu) anew at
+    /// the next solve; needed whenever the matrix is reinitialised.
     void
     rebuild_preconditioner()
     {
       amg.reset();
+      factorization.reset();
+    }
+
+    /// Number of factorizations of gmres-lu so far.
+    unsigned int
+    n_factorizations() const
+    {
+      return n_factorized;
     }
 
     /// Number of solves that needed the GMRES fallback.
@@ -90,6 +100,14 @@ namespace densify
            TrilinosWrappers::MPI::Vector        &x,
            const TrilinosWrappers::MPI::Vector  &b);
 
+    /// gmres-lu: GMRES preconditioned by the stored factorization, or a new
+    /// factorization of @p matrix and a direct solve.
+    unsigned int
+    solve_with_factorization(const TrilinosWrappers::SparseMatrix &matrix,
+                             TrilinosWrappers::MPI::Vector        &x,
+                             const TrilinosWrappers::MPI::Vector  &b,
+                             SolverControl                        &control);
+
     /// Build the ML hierarchy of @p matrix with the rigid-body modes.
     void
     setup_amg(const TrilinosWrappers::SparseMatrix &matrix);
@@ -106,5 +124,13 @@ namespace densify
     /// Column-major: mode k of local row i at [k * n_local + i].
     std::vector<double>                                null_space;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    /// gmres-lu: the factorization of an earlier tangent, its solver
+    /// control, and the number of factorizations.
+    std::unique_ptr<SolverControl>                  factorization_control;
+    std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
+    unsigned int                                    n_factorized = 0;
+    /// gmres-lu: GMRES iterations beyond which the tangent is factorized
+    /// anew.
+    static constexpr unsigned int max_reuse_iterations = 20;
   };
 } // namespace densify
