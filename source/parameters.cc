@@ -317,6 +317,18 @@ namespace densify
         "consistent unless Solver/Linear solver = cg-amg.",
         Patterns::Selection("auto|symmetric|consistent"));
       prm.add_parameter(
+        "Geometric tangent",
+        contact.geometric_tangent,
+        "Whether the Newton tangent of particle-particle contact includes "
+        "the rotation of the master facet's normal and the sliding of the "
+        "projection point over the facet (doc/theory.md section 9). true: "
+        "exact for frictionless P1 contact, quadratic Newton where contacts "
+        "slide over facets, but not symmetric (needs Solver/Linear solver = "
+        "gmres-amg, gmres-lu or direct); false: only eps n n^T (symmetric, "
+        "CG works; Newton slows where contacts slide); auto: true unless "
+        "the linear solver is cg-amg. The converged answer is the same.",
+        Patterns::Selection("auto|true|false"));
+      prm.add_parameter(
         "Contact points",
         contact.contact_points,
         "Where contact with tools and other particles is evaluated on a "
@@ -340,7 +352,10 @@ namespace densify
         "of the same stiffness between the two poles of each particle keep "
         "the axis through them vertical but let the particle move sideways, "
         "for frictionless layers whose exact solution is symmetric about "
-        "each particle's mid-plane. The springs' force is reported as "
+        "each particle's mid-plane. In both modes one more spring, between "
+        "the top pole and the surface vertex farthest along +x, holds the "
+        "spin about the vertical axis, which frictionless contact leaves "
+        "free but for the faceting. The springs' force is reported as "
         "pole_force in statistics.csv and in the log; it vanishes for a "
         "state with that symmetry. false: no springs.",
         Patterns::Selection("false|true|vertical"));
@@ -527,8 +542,8 @@ namespace densify
   {
     // the short PRM text ("subsection", "set Name = value", "end" lines),
     // flattened to "Sub/Sub/Name = value"; Output, Solver and the friction
-    // tangent may change between a run and its resumption (how to write, how
-    // to solve)
+    // and geometric tangents may change between a run and its resumption (how
+    // to write, how to solve)
     std::ostringstream prm_text;
     prm.print_parameters(prm_text, ParameterHandler::ShortPRM);
     std::istringstream       in(prm_text.str());
@@ -548,7 +563,8 @@ namespace densify
             const auto        eq    = entry.find('=');
             // the friction tangent is a choice of how to solve too
             if (path.size() == 1 && path[0] == "Contact" &&
-                Utilities::trim(entry.substr(0, eq)) == "Friction tangent")
+                (Utilities::trim(entry.substr(0, eq)) == "Friction tangent" ||
+                 Utilities::trim(entry.substr(0, eq)) == "Geometric tangent"))
               continue;
             for (const std::string &p : path)
               text << p << '/';

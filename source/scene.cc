@@ -281,6 +281,13 @@ namespace densify
         "that CG cannot solve: set Solver/Linear solver = gmres-amg (or "
         "direct)");
 
+    if (prm.contact.geometric_tangent == "true" &&
+        prm.solver.linear_solver == "cg-amg")
+      throw std::runtime_error(
+        "Contact/Geometric tangent = true gives a nonsymmetric tangent that "
+        "CG cannot solve: set Solver/Linear solver = gmres-amg, gmres-lu or "
+        "direct, or Contact/Geometric tangent = auto");
+
     Container container;
     container.has_die    = prm.tools.die_enabled;
     container.die_radius = prm.tools.die_diameter / 2;

@@ -225,13 +225,12 @@ namespace densify
     locally_owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
-    // masters of particle contact, and the partner of a vertical pole
-    // spring, may lie on any rank's cells
+    // masters of particle contact, and the partner of a pole spring, may lie
+    // on any rank's cells
     has_particle_contact = particles.size() > 1;
-    ghosted_dofs =
-      (has_particle_contact || prm.contact.hold_poles == "vertical") ?
-        complete_index_set(dof_handler.n_dofs()) :
-        locally_relevant;
+    ghosted_dofs = (has_particle_contact || prm.contact.hold_poles != "false") ?
+                     complete_index_set(dof_handler.n_dofs()) :
+                     locally_relevant;
 
     solution.reinit(locally_owned, comm);
     increment.reinit(locally_owned, comm);
@@ -270,6 +269,10 @@ namespace densify
     linear_solver_type = prm.solver.linear_solver;
     if (linear_solver_type == "auto")
       linear_solver_type = friction.consistent ? "gmres-amg" : "cg-amg";
+    geometric_tangent =
+      has_particle_contact && (prm.contact.geometric_tangent == "true" ||
+                               (prm.contact.geometric_tangent == "auto" &&
+                                linear_solver_type != "cg-amg"));
     friction.tangential_ratio =
       prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
     std::vector<FrictionLaw> tool_laws;
@@ -287,6 +290,7 @@ namespace densify
         // Newton iteration can move (the step limiter allows h/2)
         search_margin = 0.25 * h_min;
         particle_contact.setup(dof_handler, penalty, friction, contact_points);
+        particle_contact.set_geometric_tangent(geometric_tangent);
         particle_contact.set_committed_solution(committed_ghosted);
         update_ghosts();
         particle_contact.update_search(solution_ghosted, search_margin);
@@ -687,9 +691,14 @@ namespace densify
           pcout << "      line search: max|du| " << std::setprecision(3)
                 << max_step << " mm, step " << s << ", "
                 << trial.contact.n_active << " contact points" << std::endl;
-        const bool reassigned =
-          has_particle_contact &&
-          particle_contact.update_projections(*mapping, solution_ghosted);
+        const unsigned int n_reassigned =
+          has_particle_contact ?
+            particle_contact.update_projections(*mapping, solution_ghosted) :
+            0;
+        const bool reassigned = n_reassigned > 0;
+        if (prm.output.verbose && reassigned)
+          pcout << "      " << n_reassigned
+                << " contact points changed their master facet" << std::endl;
         current = (have_matrix && !reassigned) ? trial : assemble(true);
         line_search_step = s;
       }
@@ -1224,7 +1233,10 @@ namespace densify
         pcout << ", plastic history";
       if (nodal_averaging)
         pcout << ", nodal-averaged F-bar (P1 locking remedy)";
-      pcout << "; linear solver " << linear_solver_type << std::endl;
+      pcout << "; linear solver " << linear_solver_type;
+      if (geometric_tangent)
+        pcout << ", geometric contact tangent";
+      pcout << std::endl;
     }
 
     const double die_area =

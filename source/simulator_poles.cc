@@ -1,7 +1,7 @@
 // Pole springs of the Simulator (Contact/Hold poles on axis): horizontal
 // springs on the top and bottom pole vertex of every particle, holding them
 // on the vertical line through its centre (true) or keeping the axis through
-// them vertical (vertical).
+// them vertical (vertical), and one spring against the spin about that axis.
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -23,6 +23,10 @@ namespace densify
     constexpr types::global_dof_index none = numbers::invalid_dof_index;
     std::vector<std::array<std::array<types::global_dof_index, 2>, 2>> pole(
       particles.size(), {{{{none, none}}, {{none, none}}}});
+    // the y DoF of the surface vertex farthest along +x from the centre: it
+    // moves sideways when the particle spins about its vertical axis
+    std::vector<types::global_dof_index> spin(particles.size(), none);
+    std::vector<double>                  spin_x(particles.size(), 0.);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
         const unsigned int p = cell->material_id();
@@ -30,6 +34,11 @@ namespace densify
         for (const unsigned int v : cell->vertex_indices())
           {
             const Tensor<1, 3> r = cell->vertex(v) - particles[p].centre;
+            if (r[0] > spin_x[p])
+              {
+                spin_x[p] = r[0];
+                spin[p]   = cell->vertex_dof_index(v, 1);
+              }
             if (std::abs(std::abs(r[2]) - R) > 1e-8 * R ||
                 r[0] * r[0] + r[1] * r[1] > 1e-16 * R * R)
               continue;
@@ -61,6 +70,10 @@ namespace densify
                 if (locally_owned.is_element(i))
                   pole_springs.push_back({i, none, k});
           }
+        // against the spin: between that vertex's y DoF and the top pole's
+        if (spin[p] != none && pole[p][1][1] != none &&
+            locally_owned.is_element(spin[p]))
+          pole_springs.push_back({spin[p], pole[p][1][1], k});
       }
     if (n_found != 4 * particles.size())
       throw std::runtime_error(

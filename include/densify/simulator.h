@@ -294,7 +294,8 @@ namespace densify
     add_pole_springs(const bool with_matrix);
 
     /// A pole spring: stiffness k (N/mm) on the horizontal DoF i, towards
-    /// zero (Hold poles on axis = true) or towards DoF j (vertical).
+    /// zero (Hold poles on axis = true) or towards DoF j (vertical, and the
+    /// spin spring in both modes).
     struct PoleSpring
     {
       types::global_dof_index i = 0;
@@ -364,7 +365,10 @@ namespace densify
     /// Particle-particle contact, if there is more than one particle.
     bool has_particle_contact = false;
     /// Solver/Linear solver with 'auto' resolved (cg-amg, gmres-amg, direct).
-    std::string     linear_solver_type;
+    std::string linear_solver_type;
+    /// Contact/Geometric tangent resolved: the particle contact tangent with
+    /// the motion of the master facets.
+    bool            geometric_tangent = false;
     ParticleContact particle_contact;
     /// Search margin of the particle contact (mm).
     double search_margin = 0.;

@@ -67,6 +67,104 @@ namespace densify
       const double v = vb * denominator, w = vc * denominator;
       return {{1 - v - w, v, w}};
     }
+    /**
+     * Add to @p pair_matrix (slave DoFs, then master DoFs) the tangent terms
+     * of the traction @p T = p n + t that come from the motion of the master
+     * facet with corners @p c (current positions): the rotation of the
+     * normal @p n, which turns the pressure @p p, and, if @p sliding, the
+     * motion of the projection point (barycentric @p bary on the flat facet,
+     * @p x_s_minus_y from there to the slave point), which moves @p T to
+     * other master shape functions. For the flat facet y = c0 + b1 e1 + b2 e2
+     * the projection condition (x_s - y) . e_a = 0 gives
+     * M db = e_a . (dx_s - b_k dc_k) + (x_s - y) . de_a with the metric
+     * M = e_a . e_b.
+     * @p psi: slave shape functions and minus the master ones at the
+     * projection; @p corner[i]: which facet corner the master DoF i moves
+     * (-1: none); @p master_grad[i]: gradient of the master shape function i
+     * in reference coordinates; @p ref_corner: the corners in reference
+     * coordinates of the master cell. For P2 the master point
+     * x_m (given by the master cell's shape functions) lies off the flat facet
+     * through the corners: the gap g = (x_s - x_m) . n then also changes by
+     * @p x_s_minus_x_m . dn - n . (@p dx_m_dxi dxi), which the pressure
+     * p = lambda - @p eps g follows (both vanish for P1).
+     */
+    void
+    add_geometric_tangent(const std::array<Point<3>, 3>   &c,
+                          const Tensor<1, 3>              &n,
+                          const Tensor<1, 3>              &x_s_minus_y,
+                          const std::array<double, 3>     &bary,
+                          const double                     p,
+                          const Tensor<1, 3>              &T,
+                          const bool                       sliding,
+                          const std::vector<Tensor<1, 3>> &psi,
+                          const std::vector<int>          &corner,
+                          const std::vector<unsigned int> &component,
+                          const std::vector<Tensor<1, 3>> &master_grad,
+                          const std::array<Point<3>, 3>   &ref_corner,
+                          const double                     eps,
+                          const Tensor<1, 3>              &x_s_minus_x_m,
+                          const Tensor<2, 3>              &dx_m_dxi,
+                          const double                     factor,
+                          FullMatrix<double>              &pair_matrix)
+    {
+      const unsigned int n_dofs = component.size();
+      const Tensor<1, 3> e1 = c[1] - c[0], e2 = c[2] - c[0];
+      const Tensor<1, 3> normal_dir = cross_product_3d(e1, e2);
+      const double       length     = normal_dir.norm();
+      // n = sign c/|c|: dn = sign (I - n n) dc / |c|
+      const double       sign = (normal_dir * n > 0) ? 1. : -1.;
+      const Tensor<2, 3> P_n = unit_symmetric_tensor<3>() - outer_product(n, n);
+      const double       m11 = e1 * e1, m12 = e1 * e2, m22 = e2 * e2;
+      const double       det = m11 * m22 - m12 * m12;
+      std::vector<Tensor<1, 3>> dn(2 * n_dofs), dxi(2 * n_dofs);
+      std::vector<double>       dg(2 * n_dofs);
+      for (unsigned int j = 0; j < 2 * n_dofs; ++j)
+        {
+          // the motion of the slave point relative to the flat facet's
+          // point at fixed b: the slave's shape functions, minus b_a for the
+          // corner DoFs (for P1 psi itself)
+          const int    a = j < n_dofs ? -1 : corner[j - n_dofs];
+          Tensor<1, 3> relative;
+          if (j < n_dofs)
+            relative = psi[j];
+          else if (a >= 0)
+            relative[component[j - n_dofs]] = -bary[a];
+          double r1 = e1 * relative, r2 = e2 * relative;
+          if (a >= 0)
+            {
+              Tensor<1, 3> e_d;
+              e_d[component[j - n_dofs]] = 1.;
+              const Tensor<1, 3> dc =
+                a == 1 ? cross_product_3d(e_d, e2) :
+                a == 2 ? cross_product_3d(e1, e_d) :
+                         -cross_product_3d(e_d, e2) - cross_product_3d(e1, e_d);
+              dn[j] = sign / length * (P_n * dc);
+              // de1 = dc1 - dc0, de2 = dc2 - dc0
+              const double n_e = x_s_minus_y * e_d;
+              r1 += a == 1 ? n_e : (a == 0 ? -n_e : 0.);
+              r2 += a == 2 ? n_e : (a == 0 ? -n_e : 0.);
+            }
+          if (sliding)
+            {
+              const double db1 = (m22 * r1 - m12 * r2) / det,
+                           db2 = (m11 * r2 - m12 * r1) / det;
+              dxi[j]           = db1 * (ref_corner[1] - ref_corner[0]) +
+                       db2 * (ref_corner[2] - ref_corner[0]);
+            }
+          dg[j] = x_s_minus_x_m * dn[j] - n * (dx_m_dxi * dxi[j]);
+        }
+      for (unsigned int i = 0; i < 2 * n_dofs; ++i)
+        for (unsigned int j = 0; j < 2 * n_dofs; ++j)
+          {
+            // dp = -eps dg
+            double value = p * (psi[i] * dn[j]) - eps * (n * psi[i]) * dg[j];
+            // psi_i = -N_i(xi) e_k on the master: d psi_i = -(grad N_i . dxi)
+            if (i >= n_dofs)
+              value -=
+                T[component[i - n_dofs]] * (master_grad[i - n_dofs] * dxi[j]);
+            pair_matrix(i, j) -= factor * value;
+          }
+    }
   } // namespace
 
 
@@ -345,6 +443,8 @@ namespace densify
     std::vector<Tensor<1, 3>>            psi(2 * n_dofs), D_psi(2 * n_dofs);
     Vector<double>                       master_u(n_dofs), master_old(n_dofs);
     std::vector<double>                  master_phi(n_dofs);
+    std::vector<int>                     corner(n_dofs);
+    std::vector<Tensor<1, 3>>            master_grad(n_dofs);
     FullMatrix<double>                   pair_matrix(2 * n_dofs, 2 * n_dofs);
     Vector<double>                       pair_residual(2 * n_dofs);
     std::vector<types::global_dof_index> pair_dofs(2 * n_dofs),
@@ -556,6 +656,63 @@ namespace densify
                           for (unsigned int j = 0; j < 2 * n_dofs; ++j)
                             pair_matrix(i, j) =
                               weight * (psi[i] * D_psi[j]) * JxW;
+                        if (geometric_tangent && p > 0.)
+                          {
+                            std::array<Point<3>, 3> c, ref_corner;
+                            for (unsigned int a = 0; a < 3; ++a)
+                              {
+                                c[a] = x_now[master.cell->vertex_index(
+                                  master.local_vertex[a])];
+                                ref_corner[a] =
+                                  reference_vertices[master.local_vertex[a]];
+                              }
+                            for (unsigned int i = 0; i < n_dofs; ++i)
+                              {
+                                corner[i] = -1;
+                                for (unsigned int a = 0; a < 3; ++a)
+                                  if (master_dofs[i] ==
+                                      master.cell->vertex_dof_index(
+                                        master.local_vertex[a], component[i]))
+                                    corner[i] = a;
+                                master_grad[i] = fe.shape_grad(i, xi);
+                              }
+                            // d x_m / d xi: the affine cell map plus the
+                            // displacement's reference gradient
+                            Tensor<2, 3> dx_m_dxi;
+                            for (unsigned int k = 0; k < 3; ++k)
+                              for (unsigned int d = 0; d < 3; ++d)
+                                dx_m_dxi[d][k] = master.cell->vertex(k + 1)[d] -
+                                                 master.cell->vertex(0)[d];
+                            for (unsigned int i = 0; i < n_dofs; ++i)
+                              for (unsigned int k = 0; k < 3; ++k)
+                                dx_m_dxi[component[i]][k] +=
+                                  master_u(i) * master_grad[i][k];
+                            // the projection slides with the points unless
+                            // it is held at the edge of the (enlarged) facet
+                            const Point<3> y = best.bary[0] * c[0] +
+                                               best.bary[1] * c[1] +
+                                               best.bary[2] * c[2];
+                            const Tensor<1, 3> off = x_s - y;
+                            const bool sliding = (off - (off * n) * n).norm() <=
+                                                 1e-8 * (c[1] - c[0]).norm();
+                            add_geometric_tangent(c,
+                                                  n,
+                                                  off,
+                                                  best.bary,
+                                                  p,
+                                                  p * n + r.traction,
+                                                  sliding,
+                                                  psi,
+                                                  corner,
+                                                  component,
+                                                  master_grad,
+                                                  ref_corner,
+                                                  eps,
+                                                  x_s - (X_m + u_m),
+                                                  dx_m_dxi,
+                                                  weight * JxW,
+                                                  pair_matrix);
+                          }
                         out.matrix->add(pair_dofs, pair_matrix);
                       }
                   }
@@ -605,7 +762,7 @@ namespace densify
 
 
 
-  bool
+  unsigned int
   ParticleContact::update_projections(
     const Mapping<3>                    &mapping,
     const TrilinosWrappers::MPI::Vector &solution)
@@ -618,7 +775,7 @@ namespace densify
     out.n_changed      = &n_changed;
     loop(mapping, solution, out);
     assigned.swap(new_assignment);
-    return Utilities::MPI::max(n_changed, dof_handler->get_communicator()) > 0;
+    return Utilities::MPI::sum(n_changed, dof_handler->get_communicator());
   }
 
 

@@ -56,8 +56,10 @@ namespace densify
    * each with weight 1/2), which treats the bodies alike and avoids the
    * penetration of master nodes into slave facets that one pass allows. The
    * tangent eps n n^T plus the friction stiffness couples the slave and
-   * master cells; it neglects the change of the normal and of the projection
-   * point (symmetric positive semi-definite).
+   * master cells. By default it neglects the change of the normal and of the
+   * projection point (symmetric positive semi-definite);
+   * set_geometric_tangent() adds both (the consistent tangent of a
+   * frictionless contact; not symmetric).
    *
    * Search in two stages: the broad phase (BroadSearch, a hashed cell grid
    * over the particles' current bounding boxes) finds candidate particle
@@ -96,6 +98,20 @@ namespace densify
     set_friction_regularisation(const double delta)
     {
       friction.regularisation = delta;
+    }
+
+    /**
+     * Add to the tangent the terms from the motion of the master facet: the
+     * rotation of its normal, along which the pressure acts, and the sliding
+     * of the projection point over it, which moves the reaction to other
+     * master shape functions (doc/theory.md section 9). With them the
+     * tangent of frictionless contact is exact for P1 (not symmetric); the
+     * dependence of the friction traction on the normal is still left out.
+     */
+    void
+    set_geometric_tangent(const bool on)
+    {
+      geometric_tangent = on;
     }
 
     /// Is there any particle-particle contact candidate at all?
@@ -153,9 +169,10 @@ namespace densify
      * candidate facet. Evaluations between two calls use the assigned
      * facets (enlarged), so the residual stays continuous while a point
      * slides across a facet edge instead of jumping with the facet normal.
-     * Returns whether a point in contact changed its facet (on every rank).
+     * Returns how many points in contact changed their facet (the sum over
+     * all ranks, on every rank).
      */
-    bool
+    unsigned int
     update_projections(const Mapping<3>                    &mapping,
                        const TrilinosWrappers::MPI::Vector &solution);
 
@@ -274,7 +291,8 @@ namespace densify
     std::vector<double>                  penalty;
     FrictionLaw                          friction;
     Quadrature<2>                        face_quadrature;
-    unsigned int                         n_particles = 0;
+    unsigned int                         n_particles       = 0;
+    bool                                 geometric_tangent = false;
 
     /// All surface facets, by particle (facets_of[p] ranges over facets).
     std::vector<Facet>        facets;

@@ -31,7 +31,9 @@ main(int argc, char **argv)
                        "Particles/Centres=0,0,1.25; 0,0,3.75",
                        "Tools/Die wall/Enabled=true",
                        "Tools/Die wall/Diameter=2.55",
-                       "Tools/Upper punch/Displacement history=0:0, 1:0.048"});
+                       "Tools/Upper punch/Displacement history=0:0, 1:0.048",
+                       "Solver/Linear solver=gmres-lu",
+                       "Contact/Hold poles on axis=true"});
   Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 
