@@ -325,8 +325,13 @@ namespace densify
         "exact for frictionless P1 contact, quadratic Newton where contacts "
         "slide over facets, but not symmetric (needs Solver/Linear solver = "
         "gmres-amg, gmres-lu or direct); false: only eps n n^T (symmetric, "
-        "CG works; Newton slows where contacts slide); auto: true unless "
-        "the linear solver is cg-amg. The converged answer is the same.",
+        "CG works; Newton slows where contacts slide); auto: true for "
+        "frictionless particle contact unless the linear solver is cg-amg. "
+        "With friction the terms are incomplete (the friction traction's "
+        "dependence on the normal is left out) and measured to hurt: the "
+        "seven-sphere layer needed 88 instead of 14 Newton iterations in its "
+        "first step (benchmarks/contact_tangent.sh). The converged answer is "
+        "the same.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
@@ -352,10 +357,11 @@ namespace densify
         "of the same stiffness between the two poles of each particle keep "
         "the axis through them vertical but let the particle move sideways, "
         "for frictionless layers whose exact solution is symmetric about "
-        "each particle's mid-plane. In both modes one more spring, between "
-        "the top pole and the surface vertex farthest along +x, holds the "
-        "spin about the vertical axis, which frictionless contact leaves "
-        "free but for the faceting. The springs' force is reported as "
+        "each particle's mid-plane. With true and more than one particle (a "
+        "stack), one more spring per particle, between the top pole and the "
+        "surface vertex farthest along +x, holds the spin about the vertical "
+        "axis, which frictionless contact leaves free but for the faceting. "
+        "The springs' force is reported as "
         "pole_force in statistics.csv and in the log; it vanishes for a "
         "state with that symmetry. false: no springs.",
         Patterns::Selection("false|true|vertical"));

@@ -225,12 +225,14 @@ namespace densify
     locally_owned = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
 
-    // masters of particle contact, and the partner of a pole spring, may lie
-    // on any rank's cells
+    // masters of particle contact, and the partner of a vertical pole
+    // spring, may lie on any rank's cells (spin springs exist only with
+    // particle contact)
     has_particle_contact = particles.size() > 1;
-    ghosted_dofs = (has_particle_contact || prm.contact.hold_poles != "false") ?
-                     complete_index_set(dof_handler.n_dofs()) :
-                     locally_relevant;
+    ghosted_dofs =
+      (has_particle_contact || prm.contact.hold_poles == "vertical") ?
+        complete_index_set(dof_handler.n_dofs()) :
+        locally_relevant;
 
     solution.reinit(locally_owned, comm);
     increment.reinit(locally_owned, comm);
@@ -269,10 +271,10 @@ namespace densify
     linear_solver_type = prm.solver.linear_solver;
     if (linear_solver_type == "auto")
       linear_solver_type = friction.consistent ? "gmres-amg" : "cg-amg";
-    geometric_tangent =
-      has_particle_contact && (prm.contact.geometric_tangent == "true" ||
-                               (prm.contact.geometric_tangent == "auto" &&
-                                linear_solver_type != "cg-amg"));
+    geometric_tangent = has_particle_contact &&
+                        (prm.contact.geometric_tangent == "true" ||
+                         (prm.contact.geometric_tangent == "auto" &&
+                          linear_solver_type != "cg-amg" && friction.mu <= 0));
     friction.tangential_ratio =
       prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
     std::vector<FrictionLaw> tool_laws;

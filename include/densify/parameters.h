@@ -135,8 +135,9 @@ namespace densify
     /// (CG) or "consistent" (needs GMRES or a direct solver).
     std::string friction_tangent = "auto";
     /// Particle contact tangent with the rotation of the master normal and
-    /// the sliding of the projection point: "auto" (where the linear solver
-    /// is not cg-amg), "true" (needs GMRES or a direct solver) or "false".
+    /// the sliding of the projection point: "auto" (frictionless particle
+    /// contact where the linear solver is not cg-amg), "true" (needs GMRES or
+    /// a direct solver) or "false".
     std::string geometric_tangent = "auto";
     /// Where contact is evaluated on particle surfaces: "auto" (vertices for
     /// P1, Gauss points for P2), "vertices" or "Gauss points".

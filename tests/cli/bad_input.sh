@@ -59,6 +59,8 @@ expect "pole springs on the axis in a layer" "use 'vertical'" "$DENSIFY" good.pr
   --set "Contact/Friction coefficient=0" --set "Contact/Hold poles on axis=true"
 expect "pole springs with friction" "frictionless" "$DENSIFY" good.prm \
   --set "Contact/Hold poles on axis=vertical"
+expect "geometric tangent with CG" "Geometric tangent = auto" "$DENSIFY" good.prm \
+  --set "Contact/Geometric tangent=true" --set "Solver/Linear solver=cg-amg"
 expect "bad --set syntax" "Subsection/Name=value" "$DENSIFY" good.prm --set "Particles/Diameters"
 # under MPI: every rank stops, one message, no hang
 expect "overlap under mpirun -np 2" "overlap" "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" good.prm \
