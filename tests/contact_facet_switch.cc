@@ -96,13 +96,7 @@ main(int argc, char **argv)
   testing::read_scene(parameters,
                       prm,
                       "hertz.prm",
-                      {"Output/Directory=output",
-                       "Output/Interval=0",
-                       "Mesh/Polynomial degree=1",
-                       "Mesh/Element size=0.3",
-                       "Mesh/Refinement directions=",
-                       "Particles/Centres=0,0,1.25; 0,0,3.75",
-                       "Particles/Diameters=2.5"});
+                      testing::two_stacked_spheres(1));
   Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.setup();
   const DoFHandler<3> &dof_handler = simulator.get_dof_handler();
@@ -113,10 +107,7 @@ main(int argc, char **argv)
   contact.setup(dof_handler,
                 {1e5, 1e5},
                 FrictionLaw(),
-                Quadrature<2>(std::vector<Point<2>>{Point<2>(0, 0),
-                                                    Point<2>(1, 0),
-                                                    Point<2>(0, 1)},
-                              std::vector<double>(3, 1. / 6.)));
+                testing::facet_corners());
   contact.update_search(shifted(dof_handler, Tensor<1, 3>({0.04, 0, -0.15})),
                         0.2);
 

@@ -62,13 +62,7 @@ namespace
     testing::read_scene(parameters,
                         prm,
                         "hertz.prm",
-                        {"Output/Directory=output",
-                         "Output/Interval=0",
-                         "Mesh/Polynomial degree=" + std::to_string(degree),
-                         "Mesh/Element size=0.3",
-                         "Mesh/Refinement directions=",
-                         "Particles/Centres=0,0,1.25; 0,0,3.75",
-                         "Particles/Diameters=2.5"});
+                        testing::two_stacked_spheres(degree));
     Simulator simulator(parameters, MPI_COMM_WORLD, false);
     simulator.setup();
     const DoFHandler<3> &dof_handler = simulator.get_dof_handler();
@@ -103,12 +97,9 @@ namespace
 
     TrilinosWrappers::SparsityPattern pattern(owned_dofs, MPI_COMM_WORLD);
     DoFTools::make_sparsity_pattern(dof_handler, pattern);
-    const Quadrature<2> points =
-      degree == 1 ? Quadrature<2>(std::vector<Point<2>>{Point<2>(0, 0),
-                                                        Point<2>(1, 0),
-                                                        Point<2>(0, 1)},
-                                  std::vector<double>(3, 1. / 6.)) :
-                    Quadrature<2>(QGaussSimplex<2>(degree + 1));
+    const Quadrature<2> points = degree == 1 ?
+                                   testing::facet_corners() :
+                                   Quadrature<2>(QGaussSimplex<2>(degree + 1));
 
     for (const bool geometric : {true, false})
       {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature.h>
 
 #include <densify/parameters.h>
 
@@ -47,6 +48,35 @@ namespace densify
                                             "Mesh/Refinement directions="};
       overrides.insert(overrides.end(), extra.begin(), extra.end());
       return overrides;
+    }
+
+    /**
+     * Overrides that turn prm/hertz.prm into two spheres (d = 2.5) stacked
+     * on the z axis, touching at one point, with a uniform mesh of
+     * polynomial @p degree and element size 0.3, without output files.
+     */
+    inline std::vector<std::string>
+    two_stacked_spheres(const unsigned int degree)
+    {
+      return {"Output/Directory=output",
+              "Output/Interval=0",
+              "Mesh/Polynomial degree=" + std::to_string(degree),
+              "Mesh/Element size=0.3",
+              "Mesh/Refinement directions=",
+              "Particles/Centres=0,0,1.25; 0,0,3.75",
+              "Particles/Diameters=2.5"};
+    }
+
+    /// The contact points densify uses for P1: the corners of the reference
+    /// triangle with weights area/3.
+    inline dealii::Quadrature<2>
+    facet_corners()
+    {
+      return dealii::Quadrature<2>(
+        std::vector<dealii::Point<2>>{dealii::Point<2>(0, 0),
+                                      dealii::Point<2>(1, 0),
+                                      dealii::Point<2>(0, 1)},
+        std::vector<double>(3, 1. / 6.));
     }
 
     /// The floating-particle scene: a pressed sphere (d = 2.5) and one
