@@ -354,6 +354,14 @@ namespace densify
     if (linear_solver)
       linear_solver->rebuild_preconditioner();
     tangent.reinit(sp);
+    // the size of the tangent decides what the linear solvers cost; the
+    // pattern is made again when contact candidates move out of it
+    if (n_matrix_setups++ == 0 || prm.output.verbose)
+      pcout << "Tangent matrix: " << tangent.n_nonzero_elements()
+            << " entries, "
+            << tangent.n_nonzero_elements() /
+                 std::max<types::global_dof_index>(1, tangent.m())
+            << " per row" << std::endl;
     stabilisation.reinit(sp);
     setup_stabilisation();
   }

@@ -304,6 +304,8 @@ namespace densify
     };
     /// The pole springs this rank adds (each spring on one rank).
     std::vector<PoleSpring> pole_springs;
+    /// How often the tangent's sparsity pattern was made.
+    unsigned int n_matrix_setups = 0;
     /// Force of the pole springs at the last converged state (N).
     double last_pole_force = 0.;
 
