@@ -405,7 +405,8 @@ namespace densify
         "earlier tangent, factorized anew when GMRES needs more than 20 "
         "iterations (saves most factorizations where the tangent changes "
         "little between Newton iterations and steps); auto: gmres-amg where "
-        "friction acts with the consistent tangent, cg-amg otherwise.",
+        "friction acts with the consistent tangent or where Contact/Geometric "
+        "tangent = true, cg-amg otherwise.",
         Patterns::Selection("auto|cg-amg|gmres-amg|direct|gmres-lu"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,

@@ -270,7 +270,11 @@ namespace densify
        (tangent_choice == "auto" && prm.solver.linear_solver != "cg-amg"));
     linear_solver_type = prm.solver.linear_solver;
     if (linear_solver_type == "auto")
-      linear_solver_type = friction.consistent ? "gmres-amg" : "cg-amg";
+      linear_solver_type =
+        (friction.consistent ||
+         (has_particle_contact && prm.contact.geometric_tangent == "true")) ?
+          "gmres-amg" :
+          "cg-amg";
     geometric_tangent = has_particle_contact &&
                         (prm.contact.geometric_tangent == "true" ||
                          (prm.contact.geometric_tangent == "auto" &&

@@ -295,7 +295,7 @@ namespace densify
 
     /// A pole spring: stiffness k (N/mm) on the horizontal DoF i, towards
     /// zero (Hold poles on axis = true) or towards DoF j (vertical, and the
-    /// spin spring in both modes).
+    /// spin spring of a stack).
     struct PoleSpring
     {
       types::global_dof_index i = 0;

@@ -104,9 +104,10 @@ namespace densify
      * Add to the tangent the terms from the motion of the master facet: the
      * rotation of its normal, along which the pressure acts, and the sliding
      * of the projection point over it, which moves the reaction to other
-     * master shape functions (doc/theory.md section 9). With them the
-     * tangent of frictionless contact is exact for P1 (not symmetric); the
-     * dependence of the friction traction on the normal is still left out.
+     * master shape functions, and for P2 the curvature of the master facet
+     * (doc/theory.md section 9). With them the tangent of frictionless
+     * contact is exact (not symmetric); the dependence of the friction
+     * traction on the normal is still left out.
      */
     void
     set_geometric_tangent(const bool on)
