@@ -413,6 +413,16 @@ namespace densify
                         "CG stops when the residual falls below this times "
                         "the right-hand side norm (dimensionless).",
                         Patterns::Double(1e-16, 1.));
+      prm.add_parameter(
+        "Adaptive linear tolerance",
+        solver.adaptive_linear_tolerance,
+        "Inexact Newton: each Newton iteration solves the linear system only "
+        "as accurately as the convergence of the residual so far can use "
+        "(Eisenstat-Walker: 0.9 (|R_k|/|R_k-1|)^2, between Linear tolerance "
+        "and 1e-2, and no tighter than the Newton target needs). The "
+        "converged answer meets the same Newton tolerance; the Krylov "
+        "solvers need fewer iterations, gmres-lu fewer factorizations. "
+        "No effect with direct.");
       prm.add_parameter("Maximum linear iterations",
                         solver.max_linear_iterations,
                         "Maximum number of CG iterations per Newton step.",

@@ -632,6 +632,11 @@ namespace densify
         particle_contact.update_projections(*mapping, solution_ghosted))
       current = assemble(true, margin);
     double line_search_step = 1.;
+    // inexact Newton (Solver/Adaptive linear tolerance): the forcing term
+    // eta of Eisenstat and Walker (1996), choice 2 with gamma = 0.9 (their
+    // safeguard acts only above 0.1, beyond eta_max here)
+    constexpr double eta_max = 1e-2;
+    double           eta     = eta_max;
     residual_history.clear();
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
@@ -651,11 +656,25 @@ namespace densify
         if (it == prm.solver.max_newton_iterations)
           break;
 
+        if (prm.solver.adaptive_linear_tolerance && it > 0)
+          {
+            const double ratio =
+              current.residual_norm / residual_history[it - 1];
+            eta = 0.9 * ratio * ratio;
+            // no more accuracy than the Newton target can use
+            eta = std::max(eta, 0.1 * target / current.residual_norm);
+            eta = std::min(eta, eta_max);
+          }
         {
           residual *= -1.;
           increment = 0;
           linear_iterations +=
-            linear_solver->solve(tangent, increment, residual);
+            linear_solver->solve(tangent,
+                                 increment,
+                                 residual,
+                                 prm.solver.adaptive_linear_tolerance ?
+                                   std::max(eta, prm.solver.linear_tolerance) :
+                                   0.);
         }
         if (prm.solver.stabilisation > 0)
           {

@@ -168,6 +168,10 @@ namespace densify
     std::string linear_solver = "auto";
     /// Relative tolerance of the linear solver.
     double linear_tolerance = 1e-8;
+    /// Inexact Newton: the linear tolerance of each Newton iteration follows
+    /// the residual's convergence (Eisenstat-Walker), between Linear
+    /// tolerance and 1e-2.
+    bool adaptive_linear_tolerance = false;
     /// Maximum CG iterations.
     unsigned int max_linear_iterations = 2000;
     /// Keep the AMG hierarchy across Newton iterations while it works.

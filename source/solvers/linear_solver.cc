@@ -11,14 +11,120 @@
 
 #include <densify/solvers/linear_solver.h>
 
+#include <Amesos_Mumps.h>
+#include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
 #include <ml_MultiLevelPreconditioner.h>
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace densify
 {
+  /**
+   * MUMPS factors through Amesos_Mumps directly, so that the analysis
+   * (ordering and symbolic factorization, about a fifth of a factorization of
+   * the paper scene) is done once per sparsity pattern: deal.II's
+   * SolverDirect repeats it for every matrix.
+   */
+  class MumpsFactorization
+  {
+  public:
+    /// Factors of @p matrix; later calls of factorize() must pass a matrix
+    /// with the same sparsity pattern and maps.
+    explicit MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      problem.SetOperator(
+        const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
+      solver = std::make_unique<Amesos_Mumps>(problem);
+      check(solver->SymbolicFactorization(), "analysis");
+    }
+
+    /// Numerical factorization of the current values of the matrix.
+    void
+    factorize()
+    {
+      check(solver->NumericFactorization(), "factorization");
+    }
+
+    /// x = A^{-1} b with the factors of the last factorize().
+    void
+    solve(TrilinosWrappers::MPI::Vector       &x,
+          const TrilinosWrappers::MPI::Vector &b)
+    {
+      problem.SetLHS(&x.trilinos_vector());
+      problem.SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+      check(solver->Solve(), "solve");
+    }
+
+  private:
+    static void
+    check(const int error, const char *phase)
+    {
+      if (error != 0)
+        throw std::runtime_error(
+          "the direct solver (MUMPS) failed in its " + std::string(phase) +
+          " (Amesos error " + std::to_string(error) +
+          "); the tangent may be singular: check that every particle is "
+          "held (Tools, Particles/Hold poles on axis)");
+    }
+
+    Epetra_LinearProblem          problem;
+    std::unique_ptr<Amesos_Mumps> solver;
+  };
+
+
+
+  /**
+   * The solver control of GMRES with old factors: besides the iteration
+   * limit, it gives up as soon as the residual's mean reduction per
+   * iteration so far, extrapolated, would not reach the tolerance within
+   * the limit. A new factorization costs about as much as 15 such
+   * iterations; an attempt that is bound to fail should not use them all.
+   */
+  class ReuseControl : public SolverControl
+  {
+  public:
+    using SolverControl::SolverControl;
+
+    State
+    check(const unsigned int step, const double value) override
+    {
+      if (step == 0)
+        initial_residual = value;
+      const State state = SolverControl::check(step, value);
+      if (state != iterate || step < min_steps || !(initial_residual > 0.))
+        return state;
+      const double rate = std::pow(value / initial_residual, 1. / step);
+      if (rate < 1. &&
+          step + std::log(tolerance() / value) / std::log(rate) <= max_steps())
+        return iterate;
+      lcheck = failure;
+      return failure;
+    }
+
+  private:
+    /// Iterations before the first extrapolation.
+    static constexpr unsigned int min_steps        = 5;
+    double                        initial_residual = 0.;
+  };
+
+
+
+  LinearSolver::~LinearSolver() = default;
+
+
+
+  void
+  LinearSolver::rebuild_preconditioner()
+  {
+    amg.reset();
+    factorization.reset();
+  }
+
+
+
   LinearSolver::LinearSolver(const std::string &type,
                              const double       tolerance,
                              const unsigned int max_iterations,
@@ -81,17 +187,19 @@ namespace densify
   unsigned int
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &x,
-                      const TrilinosWrappers::MPI::Vector  &b)
+                      const TrilinosWrappers::MPI::Vector  &b,
+                      const double                          relative_tolerance)
   {
-    SolverControl control(max_iterations,
-                          std::max(tolerance * b.l2_norm(), 1e-300));
+    SolverControl control(
+      max_iterations,
+      std::max((relative_tolerance > 0 ? relative_tolerance : tolerance) *
+                 b.l2_norm(),
+               1e-300));
     if (type == "direct")
       {
         TimerOutput::Scope t(timer, "Solve: direct");
-        TrilinosWrappers::SolverDirect::AdditionalData data(false,
-                                                            "Amesos_Mumps");
-        TrilinosWrappers::SolverDirect                 solver(control, data);
-        solver.solve(matrix, x, b);
+        factorize(matrix);
+        factorization->solve(x, b);
         return 1;
       }
 
@@ -118,7 +226,7 @@ namespace densify
           }
         catch (const SolverControl::NoConvergence &)
           {}
-        catch (const ExceptionBase &)
+        catch (const dealii::ExceptionBase &)
           {}
         x = 0;
         setup_amg(matrix);
@@ -139,7 +247,7 @@ namespace densify
             "); raise Solver/Maximum linear iterations or try "
             "Solver/Linear solver = direct");
         }
-      catch (const ExceptionBase &e)
+      catch (const dealii::ExceptionBase &e)
         {
           // AztecOO stops with "loss of precision" when the tolerance is
           // below what round-off allows; its iterate is the best there is,
@@ -168,7 +276,7 @@ namespace densify
                     "converge in " +
                     std::to_string(e.last_step) + " iterations");
                 }
-              catch (const ExceptionBase &e)
+              catch (const dealii::ExceptionBase &e)
                 {
                   std::ostringstream gmres_info;
                   e.print_info(gmres_info);
@@ -225,7 +333,7 @@ namespace densify
         TimerOutput::Scope t(timer, "Solve: GMRES with old factors");
         struct OldFactors
         {
-          TrilinosWrappers::SolverDirect *direct;
+          MumpsFactorization *direct;
           void
           vmult(TrilinosWrappers::MPI::Vector       &dst,
                 const TrilinosWrappers::MPI::Vector &src) const
@@ -233,7 +341,7 @@ namespace densify
             direct->solve(dst, src);
           }
         } preconditioner{factorization.get()};
-        SolverControl short_control(max_reuse_iterations, control.tolerance());
+        ReuseControl short_control(max_reuse_iterations, control.tolerance());
         SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
           short_control,
           SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
@@ -249,15 +357,21 @@ namespace densify
           {}
       }
     TimerOutput::Scope t(timer, "Solve: direct");
-    factorization_control = std::make_unique<SolverControl>(1, 0.);
-    factorization         = std::make_unique<TrilinosWrappers::SolverDirect>(
-      *factorization_control,
-      TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
-    factorization->initialize(matrix);
-    ++n_factorized;
+    factorize(matrix);
     factorization->solve(x, b);
     last_iterations = 1;
     return 1;
+  }
+
+
+
+  void
+  LinearSolver::factorize(const TrilinosWrappers::SparseMatrix &matrix)
+  {
+    if (!factorization)
+      factorization = std::make_unique<MumpsFactorization>(matrix);
+    factorization->factorize();
+    ++n_factorized;
   }
 
 

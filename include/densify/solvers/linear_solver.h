@@ -22,6 +22,8 @@ namespace densify
 {
   using namespace dealii;
 
+  class MumpsFactorization;
+
   /**
    * Solves K x = b for the symmetric positive definite Newton tangent K.
    * "cg-amg": Trilinos CG preconditioned by ML smoothed-aggregation AMG whose
@@ -46,14 +48,13 @@ namespace densify
                  const bool         reuse_amg,
                  TimerOutput       &timer);
 
+    /// Out of line: MumpsFactorization is complete only there.
+    ~LinearSolver();
+
     /// Build the AMG hierarchy (or the factorization of gmres-lu) anew at
     /// the next solve; needed whenever the matrix is reinitialised.
     void
-    rebuild_preconditioner()
-    {
-      amg.reset();
-      factorization.reset();
-    }
+    rebuild_preconditioner();
 
     /// Number of factorizations of gmres-lu so far.
     unsigned int
@@ -86,11 +87,13 @@ namespace densify
                      const IndexSet      &locally_owned);
 
     /// Solve; returns the number of linear iterations (1 for direct).
-    /// Throws std::runtime_error if CG does not converge.
+    /// @p relative_tolerance > 0 replaces the constructor's tolerance for
+    /// this solve. Throws std::runtime_error if CG does not converge.
     unsigned int
     solve(const TrilinosWrappers::SparseMatrix &matrix,
           TrilinosWrappers::MPI::Vector        &x,
-          const TrilinosWrappers::MPI::Vector  &b);
+          const TrilinosWrappers::MPI::Vector  &b,
+          const double                          relative_tolerance = 0.);
 
   private:
     /// CG (or GMRES for "gmres-amg") with the AMG preconditioner.
@@ -107,6 +110,11 @@ namespace densify
                              TrilinosWrappers::MPI::Vector        &x,
                              const TrilinosWrappers::MPI::Vector  &b,
                              SolverControl                        &control);
+
+    /// Numerical factorization of @p matrix (after the analysis of its
+    /// pattern, the first time).
+    void
+    factorize(const TrilinosWrappers::SparseMatrix &matrix);
 
     /// Build the ML hierarchy of @p matrix with the rigid-body modes.
     void
@@ -126,9 +134,8 @@ namespace densify
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
     /// gmres-lu: the factorization of an earlier tangent, its solver
     /// control, and the number of factorizations.
-    std::unique_ptr<SolverControl>                  factorization_control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
-    unsigned int                                    n_factorized = 0;
+    std::unique_ptr<MumpsFactorization> factorization;
+    unsigned int                        n_factorized = 0;
     /// gmres-lu: GMRES iterations beyond which the tangent is factorized
     /// anew.
     static constexpr unsigned int max_reuse_iterations = 20;
