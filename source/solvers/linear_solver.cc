@@ -23,16 +23,15 @@
 namespace densify
 {
   /**
-   * MUMPS factors through Amesos_Mumps directly, so that the analysis
-   * (ordering and symbolic factorization, about a fifth of a factorization of
-   * the paper scene) is done once per sparsity pattern: deal.II's
-   * SolverDirect repeats it for every matrix.
+   * MUMPS factors of one matrix through Amesos_Mumps: analysis (ordering and
+   * symbolic factorization) in the constructor, the numerical factorization
+   * in factorize(), solves with them in solve().
    */
   class MumpsFactorization
   {
   public:
-    /// Factors of @p matrix; later calls of factorize() must pass a matrix
-    /// with the same sparsity pattern and maps.
+    /// Analysis of @p matrix, which must stay alive while this object is
+    /// used.
     explicit MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix)
     {
       problem.SetOperator(
@@ -41,7 +40,7 @@ namespace densify
       check(solver->SymbolicFactorization(), "analysis");
     }
 
-    /// Numerical factorization of the current values of the matrix.
+    /// Numerical factorization of the matrix's current values.
     void
     factorize()
     {
@@ -368,8 +367,12 @@ namespace densify
   void
   LinearSolver::factorize(const TrilinosWrappers::SparseMatrix &matrix)
   {
-    if (!factorization)
-      factorization = std::make_unique<MumpsFactorization>(matrix);
+    // a new analysis every time, as deal.II's SolverDirect does: MUMPS picks
+    // its pivot order and scaling from the values (keeping the analysis of
+    // the first matrix of a pattern was tried; seven_spheres.mpirun=2 then
+    // failed twice in the parallel ctest, and its gain was not measurable)
+    factorization.reset();
+    factorization = std::make_unique<MumpsFactorization>(matrix);
     factorization->factorize();
     ++n_factorized;
   }

@@ -111,8 +111,7 @@ namespace densify
                              const TrilinosWrappers::MPI::Vector  &b,
                              SolverControl                        &control);
 
-    /// Numerical factorization of @p matrix (after the analysis of its
-    /// pattern, the first time).
+    /// Analysis and numerical factorization of @p matrix.
     void
     factorize(const TrilinosWrappers::SparseMatrix &matrix);
 
