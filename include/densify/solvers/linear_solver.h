@@ -25,18 +25,21 @@ namespace densify
   class MumpsFactorization;
 
   /**
-   * Solves K x = b for the symmetric positive definite Newton tangent K.
+   * Solves K x = b for the Newton tangent K.
    * "cg-amg": Trilinos CG preconditioned by ML smoothed-aggregation AMG whose
    * near-null space is the six rigid-body modes of 3D elasticity, given
    * through ML's parameter list ("null space: type" = "pre-computed"), since
-   * deal.II 9.4 has no DoFTools::extract_rigid_body_modes. "direct": Amesos
-   * KLU. "gmres-amg": GMRES with the same AMG, for nonsymmetric tangents.
+   * deal.II 9.4 has no DoFTools::extract_rigid_body_modes (K symmetric
+   * positive definite). "gmres-amg": GMRES with the same AMG, for
+   * nonsymmetric tangents. "direct": MUMPS through Amesos. "gmres-lu": GMRES
+   * preconditioned by the MUMPS factors of an earlier tangent.
    */
   class LinearSolver
   {
   public:
     /**
-     * @p type "cg-amg" or "direct"; tolerance relative to |b|. With
+     * @p type "cg-amg", "gmres-amg", "direct" or "gmres-lu"; tolerance
+     * relative to |b|. With
      * @p reuse_amg, the AMG hierarchy is kept across solves until CG needs
      * more than twice the iterations it needed right after the last setup
      * (plus 10), or rebuild_preconditioner() is called. Times go into
