@@ -23,31 +23,24 @@
 namespace densify
 {
   /**
-   * MUMPS factors of one matrix through Amesos_Mumps: analysis (ordering and
-   * symbolic factorization) in the constructor, the numerical factorization
-   * in factorize(), solves with them in solve().
+   * The MUMPS factors of one matrix through Amesos_Mumps, and solves with
+   * them (the factors stay valid after the matrix's values change).
    */
   class MumpsFactorization
   {
   public:
-    /// Analysis of @p matrix, which must stay alive while this object is
-    /// used.
+    /// Analyse and factorize @p matrix, which must stay alive (its maps are
+    /// used by solve()) while this object is used.
     explicit MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix)
     {
       problem.SetOperator(
         const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
       solver = std::make_unique<Amesos_Mumps>(problem);
       check(solver->SymbolicFactorization(), "analysis");
-    }
-
-    /// Numerical factorization of the matrix's current values.
-    void
-    factorize()
-    {
       check(solver->NumericFactorization(), "factorization");
     }
 
-    /// x = A^{-1} b with the factors of the last factorize().
+    /// x = A^{-1} b with the factors.
     void
     solve(TrilinosWrappers::MPI::Vector       &x,
           const TrilinosWrappers::MPI::Vector &b)
@@ -373,7 +366,6 @@ namespace densify
     // failed twice in the parallel ctest, and its gain was not measurable)
     factorization.reset();
     factorization = std::make_unique<MumpsFactorization>(matrix);
-    factorization->factorize();
     ++n_factorized;
   }
 
