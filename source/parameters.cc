@@ -471,7 +471,9 @@ namespace densify
                         Patterns::Integer(0));
       prm.add_parameter("Verbose",
                         output.verbose,
-                        "Print the residual of every Newton iteration.");
+                        "Print the residual of every Newton iteration, and "
+                        "of every line-search trial with the largest tool "
+                        "and particle penetration.");
       prm.add_parameter(
         "Checkpoint interval",
         output.checkpoint_interval,

@@ -709,6 +709,13 @@ namespace densify
                   throw;
                 trial.residual_norm = std::numeric_limits<double>::infinity();
               }
+            if (prm.output.verbose)
+              pcout << "        trial step " << s
+                    << ": |R| = " << trial.residual_norm
+                    << ", penetration (tools, particles) "
+                    << trial.contact.max_penetration << ", "
+                    << trial.particle_contact.max_penetration << " mm"
+                    << std::endl;
             if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
               break;
             solution.add(-s, increment);
