@@ -1,18 +1,21 @@
 #!/bin/bash
 # Solver levers on later steps of the paper's scene at full fidelity: resumes
 # a checkpoint of prm/single_layer_sn.prm and runs a few steps once per
-# variant (fixed or adaptive linear tolerance, Newton tolerance), printing
+# variant (SET tolerances: fixed or adaptive linear tolerance, Newton
+# tolerance; SET line-search: Solver/Line search residual or energy), printing
 # wall time, factorizations, GMRES solves with old factors, Newton iterations
 # per step and the final forces, so that time and accuracy can be compared.
 # Usage (from the source root):
-#   bash benchmarks/late_steps.sh RUN_DIR [N_STEPS]
+#   bash benchmarks/late_steps.sh RUN_DIR [N_STEPS [SET]]
 # RUN_DIR: the Output/Directory of a run of prm/single_layer_sn.prm with a
-# checkpoint (Output/Checkpoint interval); N_STEPS after it (default 4).
+# checkpoint (Output/Checkpoint interval); N_STEPS after it (default 4); SET
+# tolerances (default) or line-search.
 # Needs build/densify; 1 rank; run it alone on the machine.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
-run=${1:?usage: bash benchmarks/late_steps.sh RUN_DIR [N_STEPS]}
+run=${1:?usage: bash benchmarks/late_steps.sh RUN_DIR [N_STEPS [SET]]}
 n=${2:-4}
+set_name=${3:-tolerances}
 info="$run/checkpoint/info.txt"
 [ -f "$info" ] || { echo "no checkpoint in $run (expected $info)"; exit 2; }
 first=$(awk '{print $3}' "$info")
@@ -43,10 +46,22 @@ variant() {
     "${reused:-0} solves with old factors, Newton per step: ${newton}; ${forces}"
 }
 echo "steps $((first + 1))..$last of prm/single_layer_sn.prm, resumed from $run"
-variant "adaptive-linear-tolerance" --set "Solver/Adaptive linear tolerance=true"
-variant "fixed-linear-tolerance" --set "Solver/Adaptive linear tolerance=false"
-variant "newton-tolerance-1e-8" --set "Solver/Adaptive linear tolerance=true" \
-  --set "Solver/Newton tolerance=1e-8"
-variant "newton-tolerance-1e-7" --set "Solver/Adaptive linear tolerance=true" \
-  --set "Solver/Newton tolerance=1e-7"
+case $set_name in
+  tolerances)
+    variant "adaptive-linear-tolerance" --set "Solver/Adaptive linear tolerance=true"
+    variant "fixed-linear-tolerance" --set "Solver/Adaptive linear tolerance=false"
+    variant "newton-tolerance-1e-8" --set "Solver/Adaptive linear tolerance=true" \
+      --set "Solver/Newton tolerance=1e-8"
+    variant "newton-tolerance-1e-7" --set "Solver/Adaptive linear tolerance=true" \
+      --set "Solver/Newton tolerance=1e-7"
+    ;;
+  line-search)
+    variant "line-search-residual" --set "Solver/Line search=residual"
+    variant "line-search-energy" --set "Solver/Line search=energy"
+    ;;
+  *)
+    echo "unknown SET $set_name (tolerances or line-search)"
+    exit 2
+    ;;
+esac
 rm -rf "$out"

@@ -445,6 +445,20 @@ namespace densify
                         "Maximum Newton iterations per multiplier update.",
                         Patterns::Integer(1));
       prm.add_parameter(
+        "Line search",
+        solver.line_search,
+        "How far each Newton iteration goes along its correction du. "
+        "residual: halve the step until the out-of-balance force |R| falls "
+        "(monotone, robust, but where a full step closes new contact points "
+        "the stiff penalty makes |R| rise and the steps become short). "
+        "energy: the step s where R(u + s du).du, the derivative of the "
+        "incremental energy along du, has fallen to half its size at s = 0 "
+        "or below (regula falsi, at most 9 trials); it stops where newly "
+        "closing contact points balance the rest of the out-of-balance force, "
+        "so |R| may rise for an iteration. Where du is no descent direction "
+        "(R.du >= 0) the residual search is used.",
+        Patterns::Selection("residual|energy"));
+      prm.add_parameter(
         "Stabilisation",
         solver.stabilisation,
         "beta >= 0: the Newton tangent (never the residual) gets beta*E/D^2 "

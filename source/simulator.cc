@@ -665,6 +665,7 @@ namespace densify
             eta = std::max(eta, 0.1 * target / current.residual_norm);
             eta = std::min(eta, eta_max);
           }
+        double phi0;
         {
           residual *= -1.;
           increment = 0;
@@ -675,6 +676,8 @@ namespace densify
                                  prm.solver.adaptive_linear_tolerance ?
                                    std::max(eta, prm.solver.linear_tolerance) :
                                    0.);
+          // R.du, with residual = -R here
+          phi0 = -(residual * increment);
         }
         if (prm.solver.stabilisation > 0)
           {
@@ -688,15 +691,27 @@ namespace densify
         // otherwise take huge, at finite strain distorting, steps)
         const double max_step = increment.linfty_norm();
         const double limit    = 0.5 * h_min;
-        // backtracking line search on the residual norm
-        const double   r0 = current.residual_norm;
-        double         s  = (max_step > limit ? limit / max_step : 1.);
+        // line search (Solver/Line search): "residual" backtracks until |R|
+        // falls; "energy" looks for the step where phi(s) = R(u + s du).du,
+        // the derivative of the incremental energy along du, has fallen to
+        // half of |phi(0)| (regula falsi with the Illinois modification in a
+        // bracket of phi's sign change). phi(0) = -du.K.du < 0 unless du is no
+        // descent direction; then the residual search is used.
+        const double   r0     = current.residual_norm;
+        const double   s_max  = (max_step > limit ? limit / max_step : 1.);
+        const bool     energy = prm.solver.line_search == "energy" && phi0 < 0;
+        double         s = s_max, s_applied = 0;
+        double         lo = 0, phi_lo = phi0, hi = s_max;
+        double         phi_hi = std::numeric_limits<double>::infinity();
+        int            kept   = 0; // Illinois: the bracket end moved last
         AssemblyResult trial;
         bool           have_matrix = true;
         for (unsigned int ls = 0;; ++ls)
           {
-            solution.add(s, increment);
+            solution.add(s - s_applied, increment);
+            s_applied   = s;
             have_matrix = (ls == 0);
+            bool failed = false;
             try
               {
                 trial = assemble(have_matrix);
@@ -708,19 +723,53 @@ namespace densify
                 if (ls == 8)
                   throw;
                 trial.residual_norm = std::numeric_limits<double>::infinity();
+                failed              = true;
               }
+            const double phi = (energy && !failed) ? residual * increment : 0.;
             if (prm.output.verbose)
-              pcout << "        trial step " << s
-                    << ": |R| = " << trial.residual_norm
-                    << ", penetration (tools, particles) "
-                    << trial.contact.max_penetration << ", "
-                    << trial.particle_contact.max_penetration << " mm"
-                    << std::endl;
-            if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
+              {
+                pcout << "        trial step " << s
+                      << ": |R| = " << trial.residual_norm;
+                if (energy)
+                  pcout << ", R.du/|R0.du| = " << phi / std::abs(phi0);
+                pcout << ", penetration (tools, particles) "
+                      << trial.contact.max_penetration << ", "
+                      << trial.particle_contact.max_penetration << " mm"
+                      << std::endl;
+              }
+            if (!energy)
+              {
+                if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
+                  break;
+                s *= 0.5;
+                continue;
+              }
+            if (!failed && (std::abs(phi) <= 0.5 * std::abs(phi0) ||
+                            (phi < 0 && s == s_max) || ls == 8))
               break;
-            solution.add(-s, increment);
-            s *= 0.5;
+            if (failed || phi > 0)
+              {
+                hi     = s;
+                phi_hi = failed ? std::numeric_limits<double>::infinity() : phi;
+                if (kept == 1)
+                  phi_lo *= 0.5;
+                kept = 1;
+              }
+            else
+              {
+                lo     = s;
+                phi_lo = phi;
+                if (kept == -1)
+                  phi_hi *= 0.5;
+                kept = -1;
+              }
+            s = std::isfinite(phi_hi) ?
+                  lo + (hi - lo) * phi_lo / (phi_lo - phi_hi) :
+                  0.5 * (lo + hi);
+            s = std::min(std::max(s, lo + 0.01 * (hi - lo)),
+                         hi - 0.01 * (hi - lo));
           }
+        s = s_applied;
         if (!std::isfinite(trial.residual_norm))
           throw std::runtime_error(
             "step " + std::to_string(step) +

@@ -180,6 +180,10 @@ namespace densify
     double newton_tolerance = 1e-9;
     /// Maximum Newton iterations per augmentation.
     unsigned int max_newton_iterations = 30;
+    /// Line search along the Newton direction du: "residual" (backtrack
+    /// until |R| falls) or "energy" (the step where R.du, the derivative of
+    /// the incremental energy along du, has fallen to half its size).
+    std::string line_search = "residual";
     /// Stabilisation factor beta: tangent += beta E / D^2 M (tangent only).
     double stabilisation = 1e-6;
   };
