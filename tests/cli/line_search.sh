@@ -13,6 +13,7 @@ common=(--set "Output/Interval=0" --set "Output/Checkpoint interval=0"
   --set "Time stepping/Number of steps=8")
 scene="$SOURCE_DIR/prm/single_layer_sn_light.prm"
 "$DENSIFY" "$scene" --set "Output/Directory=residual" "${common[@]}" \
+  --set "Solver/Line search=residual" \
   > residual.log
 "$DENSIFY" "$scene" --set "Output/Directory=energy" "${common[@]}" \
   --set "Solver/Line search=energy" --set "Output/Verbose=true" > energy.log
