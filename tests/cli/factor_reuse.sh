@@ -8,11 +8,7 @@
 # wall.
 set -eu
 cd "$WORK_DIR"
-common=(--set "Output/Interval=0" --set "Output/Checkpoint interval=0"
-  --set "Mesh/Element size=0.6"
-  --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.24"
-  --set "Time stepping/Number of steps=8")
-scene="$SOURCE_DIR/prm/single_layer_sn_light.prm"
+source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
 # (the scene itself asks for gmres-lu)
 "$DENSIFY" "$scene" --set "Output/Directory=direct" "${common[@]}" \
   --set "Solver/Linear solver=direct" > direct.log

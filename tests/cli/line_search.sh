@@ -7,11 +7,7 @@
 # measured in doc/performance.md, not asserted.
 set -eu
 cd "$WORK_DIR"
-common=(--set "Output/Interval=0" --set "Output/Checkpoint interval=0"
-  --set "Mesh/Element size=0.6"
-  --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.24"
-  --set "Time stepping/Number of steps=8")
-scene="$SOURCE_DIR/prm/single_layer_sn_light.prm"
+source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
 "$DENSIFY" "$scene" --set "Output/Directory=residual" "${common[@]}" \
   --set "Solver/Line search=residual" \
   > residual.log
