@@ -726,6 +726,9 @@ namespace densify
                 failed              = true;
               }
             const double phi = (energy && !failed) ? residual * increment : 0.;
+            // a NaN in the residual: a failed trial (thrown below if the
+            // last)
+            failed = failed || !std::isfinite(phi);
             if (prm.output.verbose)
               {
                 pcout << "        trial step " << s
@@ -744,8 +747,8 @@ namespace densify
                 s *= 0.5;
                 continue;
               }
-            if (!failed && (std::abs(phi) <= 0.5 * std::abs(phi0) ||
-                            (phi < 0 && s == s_max) || ls == 8))
+            if (ls == 8 || (!failed && (std::abs(phi) <= 0.5 * std::abs(phi0) ||
+                                        (phi < 0 && s == s_max))))
               break;
             if (failed || phi > 0)
               {
