@@ -744,6 +744,10 @@ namespace densify
               {
                 if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
                   break;
+                // back to u, then the shorter step (the same round-off as
+                // before the energy search existed)
+                solution.add(-s, increment);
+                s_applied = 0;
                 s *= 0.5;
                 continue;
               }
