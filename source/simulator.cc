@@ -988,18 +988,13 @@ namespace densify
                         const unsigned int step,
                         StepStatistics    &s)
   {
-    const double   step_length       = prm.time.end_time / prm.time.n_steps;
-    double         dt                = next_increment;
+    const double   step_length = prm.time.end_time / prm.time.n_steps;
+    double         dt          = std::min(next_increment, time - current_time);
     unsigned int   cutbacks_in_a_row = 0;
     ContactResults contact;
     while (current_time < time - 1e-12 * step_length)
       {
-        // the increment that reaches the end of the step ends exactly there:
-        // a round-off remainder would make one more, tiny increment, and the
-        // next step would start from it (measured: 42 increments and 349
-        // Newton iterations for step 248 of the 43-sphere layer)
-        const bool   last  = dt >= (time - current_time) * (1. - 1e-9);
-        const double t_end = last ? time : current_time + dt;
+        dt = std::min(dt, time - current_time);
         // what a failed increment must restore
         const TrilinosWrappers::MPI::Vector saved_solution  = solution;
         const TrilinosWrappers::MPI::Vector saved_increment = last_increment;
@@ -1010,11 +1005,10 @@ namespace densify
         const unsigned int           newton_before   = s.newton_iterations;
         try
           {
-            contact = solve_increment(t_end, step, s);
+            contact = solve_increment(current_time + dt, step, s);
           }
         catch (const std::runtime_error &e)
           {
-            dt             = t_end - current_time;
             solution       = saved_solution;
             last_increment = saved_increment;
             tool_contact.set_state(saved_tools);
@@ -1054,7 +1048,7 @@ namespace densify
         if (has_particle_contact)
           particle_contact.commit(*mapping, solution_ghosted);
         committed_ghosted = solution;
-        current_time      = t_end;
+        current_time += dt;
         ++s.increments;
         cutbacks_in_a_row = 0;
         // easy increments let the increment grow again, up to a full step
