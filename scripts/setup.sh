@@ -3,7 +3,7 @@
 # Usage: bash scripts/setup.sh   (environment: BUILD_TYPE=Release|Debug, JOBS=n)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-packages=(libdeal.ii-dev g++ make cmake numdiff openmpi-bin
+packages=(libdeal.ii-dev libmumps-dev g++ make cmake numdiff openmpi-bin
           python3-numpy python3-matplotlib python3-vtk9 xvfb xauth  # scripts/postprocess
           time  # /usr/bin/time in benchmarks/scene_speed.sh
           libopenblas0-serial)  # optimised BLAS/LAPACK for MUMPS (2-4x faster factorizations)

@@ -468,6 +468,17 @@ namespace densify
         "contributes to the last Newton correction is reported. "
         "Dimensionless.",
         Patterns::Double(0.));
+      prm.add_parameter(
+        "Reproducible",
+        solver.reproducible,
+        "true: the direct solvers (Linear solver = direct or gmres-lu) "
+        "gather the matrix on rank 0 and factorize it there with sequential "
+        "MUMPS, so that a run on several MPI ranks gives the same result "
+        "every time; false: MUMPS works on all ranks, whose asynchronous "
+        "scheduling changes the round-off from run to run (faster "
+        "factorizations; see doc/performance.md). No effect on one rank or "
+        "with the AMG solvers, which repeat exactly anyway.",
+        Patterns::Bool());
     }
     prm.leave_subsection();
 

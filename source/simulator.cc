@@ -327,6 +327,7 @@ namespace densify
                                      prm.solver.linear_tolerance,
                                      prm.solver.max_linear_iterations,
                                      prm.solver.reuse_amg,
+                                     prm.solver.reproducible,
                                      timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
   }

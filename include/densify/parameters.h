@@ -186,6 +186,9 @@ namespace densify
     std::string line_search = "residual";
     /// Stabilisation factor beta: tangent += beta E / D^2 M (tangent only).
     double stabilisation = 1e-6;
+    /// The direct solvers factorize on rank 0 alone, so that runs on several
+    /// ranks repeat exactly.
+    bool reproducible = true;
   };
 
   /// Subsection "Output": where and what to write.

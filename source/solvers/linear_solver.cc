@@ -12,6 +12,10 @@
 #include <densify/solvers/linear_solver.h>
 
 #include <Amesos_Mumps.h>
+#include <Epetra_Import.h>
+#include <Epetra_Map.h>
+#include <Epetra_MpiComm.h>
+#include <dmumps_c.h>
 #include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
 #include <ml_MultiLevelPreconditioner.h>
@@ -22,22 +26,115 @@
 
 namespace densify
 {
+  namespace
+  {
+    /// Throw the error of a failed MUMPS @p phase (Amesos or MUMPS code).
+    void
+    check_mumps(const int error, const char *phase)
+    {
+      if (error != 0)
+        throw std::runtime_error(
+          "the direct solver (MUMPS) failed in its " + std::string(phase) +
+          " (error " + std::to_string(error) +
+          "); the tangent may be singular: check that every particle is "
+          "held (Tools, Particles/Hold poles on axis)");
+    }
+  } // namespace
+
+
+
   /**
-   * The MUMPS factors of one matrix through Amesos_Mumps, and solves with
-   * them (the factors stay valid after the matrix's values change).
+   * The MUMPS factors of one matrix, and solves with them (the factors stay
+   * valid after the matrix's values change). Either MUMPS on all ranks
+   * through Amesos_Mumps, or (@p on_one_rank) sequential MUMPS on rank 0 with
+   * the matrix and the right-hand sides gathered there: MUMPS on several
+   * ranks schedules its work asynchronously, so its round-off, and with it a
+   * run's result, changes from one run to the next; on one rank it does not.
    */
   class MumpsFactorization
   {
   public:
     /// Analyse and factorize @p matrix, which must stay alive (its maps are
     /// used by solve()) while this object is used.
-    explicit MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix)
+    MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix,
+                       const bool                            on_one_rank)
     {
-      problem.SetOperator(
-        const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
-      solver = std::make_unique<Amesos_Mumps>(problem);
-      check(solver->SymbolicFactorization(), "analysis");
-      check(solver->NumericFactorization(), "factorization");
+      const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+      if (!on_one_rank || A.Comm().NumProc() == 1)
+        {
+          problem.SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+          solver = std::make_unique<Amesos_Mumps>(problem);
+          check_mumps(solver->SymbolicFactorization(), "analysis");
+          check_mumps(solver->NumericFactorization(), "factorization");
+          return;
+        }
+      const bool root = A.Comm().MyPID() == 0;
+      const int  n    = A.NumGlobalRows();
+      root_map = std::make_unique<Epetra_Map>(n, root ? n : 0, 0, A.Comm());
+      gather   = std::make_unique<Epetra_Import>(*root_map, A.RowMap());
+      scatter  = std::make_unique<Epetra_Import>(A.RowMap(), *root_map);
+      Epetra_CrsMatrix gathered(Copy, *root_map, 0);
+      gathered.Import(A, *gather, Insert);
+      gathered.FillComplete();
+
+      int error = 0;
+      if (root)
+        {
+          // the triplets, 1-based, of the whole matrix
+          for (int i = 0; i < gathered.NumMyRows(); ++i)
+            {
+              int     length;
+              double *values;
+              int    *columns;
+              gathered.ExtractMyRowView(i, length, values, columns);
+              for (int k = 0; k < length; ++k)
+                {
+                  rows.push_back(gathered.GRID(i) + 1);
+                  cols.push_back(gathered.GCID(columns[k]) + 1);
+                  entries.push_back(values[k]);
+                }
+            }
+          mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
+          mumps.par          = 1;
+          mumps.sym          = 0;
+          mumps.job          = -1;
+          dmumps_c(&mumps);
+          error = mumps.infog[0];
+          if (error >= 0)
+            {
+              initialised = true;
+              // no printing; MUMPS chooses ordering and scaling, as Amesos
+              mumps.icntl[0]  = -1;
+              mumps.icntl[1]  = -1;
+              mumps.icntl[2]  = -1;
+              mumps.icntl[3]  = 0;
+              mumps.icntl[13] = 20;
+              mumps.n         = n;
+              mumps.nnz       = rows.size();
+              mumps.irn       = rows.data();
+              mumps.jcn       = cols.data();
+              mumps.a         = entries.data();
+              for (const int job : {1, 2})
+                if (error >= 0)
+                  {
+                    mumps.job = job;
+                    dmumps_c(&mumps);
+                    error = mumps.infog[0];
+                  }
+            }
+        }
+      // every rank throws, or none
+      error = std::min(dealii::Utilities::MPI::min(error, comm(A)), 0);
+      check_mumps(error, "factorization (on rank 0)");
+    }
+
+    ~MumpsFactorization()
+    {
+      if (initialised)
+        {
+          mumps.job = -2;
+          dmumps_c(&mumps);
+        }
     }
 
     /// x = A^{-1} b with the factors.
@@ -45,25 +142,49 @@ namespace densify
     solve(TrilinosWrappers::MPI::Vector       &x,
           const TrilinosWrappers::MPI::Vector &b)
     {
-      problem.SetLHS(&x.trilinos_vector());
-      problem.SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
-      check(solver->Solve(), "solve");
+      if (solver)
+        {
+          problem.SetLHS(&x.trilinos_vector());
+          problem.SetRHS(
+            const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+          check_mumps(solver->Solve(), "solve");
+          return;
+        }
+      Epetra_Vector on_root(*root_map);
+      on_root.Import(b.trilinos_vector(), *gather, Insert);
+      int error = 0;
+      if (initialised)
+        {
+          mumps.job = 3;
+          mumps.rhs = on_root.Values();
+          dmumps_c(&mumps);
+          error = mumps.infog[0];
+        }
+      error = std::min(dealii::Utilities::MPI::min(error, x.get_mpi_communicator()), 0);
+      check_mumps(error, "solve (on rank 0)");
+      x.trilinos_vector().Import(on_root, *scatter, Insert);
     }
 
   private:
-    static void
-    check(const int error, const char *phase)
+    /// The MPI communicator of @p A.
+    static MPI_Comm
+    comm(const Epetra_CrsMatrix &A)
     {
-      if (error != 0)
-        throw std::runtime_error(
-          "the direct solver (MUMPS) failed in its " + std::string(phase) +
-          " (Amesos error " + std::to_string(error) +
-          "); the tangent may be singular: check that every particle is "
-          "held (Tools, Particles/Hold poles on axis)");
+      return dynamic_cast<const Epetra_MpiComm &>(A.Comm()).Comm();
     }
 
+    /// MUMPS on all ranks.
     Epetra_LinearProblem          problem;
     std::unique_ptr<Amesos_Mumps> solver;
+
+    /// Sequential MUMPS on rank 0: all rows there, the maps between the
+    /// distributed vectors and those, and MUMPS's data (rank 0 only).
+    std::unique_ptr<Epetra_Map>    root_map;
+    std::unique_ptr<Epetra_Import> gather, scatter;
+    std::vector<int>               rows, cols;
+    std::vector<double>            entries;
+    DMUMPS_STRUC_C                 mumps{};
+    bool                           initialised = false;
   };
 
 
@@ -121,11 +242,13 @@ namespace densify
                              const double       tolerance,
                              const unsigned int max_iterations,
                              const bool         reuse_amg,
+                             const bool         reproducible,
                              TimerOutput       &timer)
     : type(type)
     , tolerance(tolerance)
     , max_iterations(max_iterations)
     , reuse_amg(reuse_amg)
+    , reproducible(reproducible)
     , timer(timer)
   {}
 
@@ -365,7 +488,7 @@ namespace densify
     // the first matrix of a pattern was tried; seven_spheres.mpirun=2 then
     // failed twice in the parallel ctest, and its gain was not measurable)
     factorization.reset();
-    factorization = std::make_unique<MumpsFactorization>(matrix);
+    factorization = std::make_unique<MumpsFactorization>(matrix, reproducible);
     ++n_factorized;
   }
 

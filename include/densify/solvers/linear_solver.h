@@ -42,13 +42,16 @@ namespace densify
      * relative to |b|. With
      * @p reuse_amg, the AMG hierarchy is kept across solves until CG needs
      * more than twice the iterations it needed right after the last setup
-     * (plus 10), or rebuild_preconditioner() is called. Times go into
-     * @p timer.
+     * (plus 10), or rebuild_preconditioner() is called. With
+     * @p reproducible, "direct" and "gmres-lu" factorize on rank 0 alone
+     * (sequential MUMPS), so that runs on several ranks repeat exactly.
+     * Times go into @p timer.
      */
     LinearSolver(const std::string &type,
                  const double       tolerance,
                  const unsigned int max_iterations,
                  const bool         reuse_amg,
+                 const bool         reproducible,
                  TimerOutput       &timer);
 
     /// Out of line: MumpsFactorization is complete only there.
@@ -126,6 +129,7 @@ namespace densify
     const double       tolerance;
     const unsigned int max_iterations;
     const bool         reuse_amg;
+    const bool         reproducible;
     TimerOutput       &timer;
     unsigned int       iterations_after_setup = 0;
     unsigned int       last_iterations        = 0;
