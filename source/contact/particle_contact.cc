@@ -573,8 +573,23 @@ namespace densify
                       u_m_old[component[i]] += master_old(i) * master_phi[i];
                   }
                 const Tensor<1, 3> &n = best.normal;
-                const double        g = (x_s - (X_m + u_m)) * n;
-                const double        eps =
+                // the normal gap, plus how far the point lies beside the
+                // (enlarged) facet: a point beyond the facet's edges, for
+                // example in the plane of a neighbour's facet flattened
+                // against the same punch, is not in contact with it. Zero for
+                // every point that projects into the facet, and continuous
+                // in the displacement (doc/theory.md section 8)
+                const Tensor<1, 3> off =
+                  x_s -
+                  (best.bary[0] *
+                     x_now[master.cell->vertex_index(master.local_vertex[0])] +
+                   best.bary[1] *
+                     x_now[master.cell->vertex_index(master.local_vertex[1])] +
+                   best.bary[2] *
+                     x_now[master.cell->vertex_index(master.local_vertex[2])]);
+                const double g =
+                  (x_s - (X_m + u_m)) * n + (off - (off * n) * n).norm();
+                const double eps =
                   std::min(penalty[slave.particle], penalty[master.particle]);
                 const Tensor<1, 3> delta =
                   friction_on ?
