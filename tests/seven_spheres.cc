@@ -17,6 +17,14 @@
 // faceted spheres tip (all seven turned by the same 0.03 rad about a
 // horizontal axis, losing neighbours) and Newton stalls in the fifth step;
 // the springs' force is printed relative to the particle contact force.
+// Without friction nothing resists a rotation of the whole layer about the
+// die axis (with each sphere's spin about its own), so the outer spheres'
+// sideways drift is measured relative to the ring's mean rotation, which is
+// printed but not checked: 1 rank ends with a ring rotation of 0.00053 mm,
+// 2 ranks (another DoF order, so other round-off) with 0.0099 mm, and the
+// drift relative to the ring is 0.0061 and 0.0065 mm. Measured as before,
+// without that split, 2 ranks gave 0.016 mm (and MUMPS on 2 ranks, whose
+// round-off changes from run to run, 0.0065 to 0.071 mm).
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>
@@ -27,6 +35,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <numeric>
 
 namespace
 {
@@ -108,23 +117,35 @@ namespace
         << ")" << std::endl;
 
     // drift: the centre and the floating particle stay, the outer spheres
-    // move radially
+    // move radially. Their sideways displacements t_i (about the die axis)
+    // are split into the ring's rotation, their mean, and what each moves
+    // relative to the ring. Friction holds the ring; without friction its
+    // rigid rotation, together with each sphere's spin, costs no energy (the
+    // die wall is a cylinder, the punches are flat), so its size is left to
+    // round-off and is printed, not checked
     const std::vector<Tensor<1, 3>> u = simulator.particle_mean_displacements();
     const std::vector<Particle>    &p = simulator.get_particles();
-    double centre_drift = std::hypot(u[0][0], u[0][1]), tangential = 0;
+    const double                    centre_drift = std::hypot(u[0][0], u[0][1]);
+    std::vector<double>             t;
     for (unsigned int i = 1; i < 7; ++i)
+      t.push_back((u[i][0] * p[i].centre[1] - u[i][1] * p[i].centre[0]) / 2.5);
+    const double ring     = std::accumulate(t.begin(), t.end(), 0.) / t.size();
+    double       relative = 0, absolute = 0;
+    for (const double ti : t)
       {
-        const Tensor<1, 3> radial(
-          {p[i].centre[0] / 2.5, p[i].centre[1] / 2.5, 0.});
-        tangential =
-          std::max(tangential,
-                   std::abs(u[i][0] * radial[1] - u[i][1] * radial[0]));
+        relative = std::max(relative, std::abs(ti - ring));
+        absolute = std::max(absolute, std::abs(ti));
       }
+    const double sideways = mu > 0 ? absolute : relative;
     out << std::setprecision(2) << "  centre sphere drift " << centre_drift
-        << " mm, outer spheres' sideways drift " << tangential
+        << " mm, outer spheres' sideways drift "
+        << (mu > 0 ? "" : "relative to the ring ") << sideways
         << " mm, both below 0.01 mm: "
-        << testing::yes(centre_drift < 0.01 && tangential < 0.01) << std::endl
-        << "  floating particle moves < 1e-9 mm: "
+        << testing::yes(centre_drift < 0.01 && sideways < 0.01) << std::endl;
+    if (mu == 0)
+      out << "  the ring's rotation (not checked): " << std::abs(ring)
+          << " mm at the outer centres" << std::endl;
+    out << "  floating particle moves < 1e-9 mm: "
         << testing::yes(u[7].norm() < 1e-9) << std::endl;
     if (root)
       std::cout << out.str();

@@ -13,11 +13,11 @@
 
 #include <Amesos_Mumps.h>
 #include <Epetra_Import.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
-#include <dmumps_c.h>
-#include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
+#include <dmumps_c.h>
 #include <ml_MultiLevelPreconditioner.h>
 
 #include <cmath>
@@ -160,7 +160,9 @@ namespace densify
           dmumps_c(&mumps);
           error = mumps.infog[0];
         }
-      error = std::min(dealii::Utilities::MPI::min(error, x.get_mpi_communicator()), 0);
+      error =
+        std::min(dealii::Utilities::MPI::min(error, x.get_mpi_communicator()),
+                 0);
       check_mumps(error, "solve (on rank 0)");
       x.trilinos_vector().Import(on_root, *scatter, Insert);
     }
