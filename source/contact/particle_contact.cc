@@ -578,7 +578,7 @@ namespace densify
                 // example in the plane of a neighbour's facet flattened
                 // against the same punch, is not in contact with it. Zero for
                 // every point that projects into the facet, and continuous
-                // in the displacement (doc/theory.md section 8)
+                // in the displacement (doc/theory.md section 9)
                 const Tensor<1, 3> off =
                   x_s -
                   (best.bary[0] *
