@@ -12,6 +12,7 @@
 #include <densify/solvers/linear_solver.h>
 
 #include <Amesos_Mumps.h>
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_Map.h>
@@ -39,6 +40,55 @@ namespace densify
           "); the tangent may be singular: check that every particle is "
           "held (Tools, Particles/Hold poles on axis)");
     }
+
+    /**
+     * A copy of @p A without the entries that are exactly zero. The tangent's
+     * pattern reserves the couplings of every contact candidate (the cells
+     * of all facets within a margin of each other, kept while the pattern
+     * lasts), most of which carry no value; MUMPS orders and factorizes the
+     * structure it is given, so each reserved pair of cells would join the
+     * two particles' fronts as if they were in contact.
+     */
+    std::unique_ptr<Epetra_CrsMatrix>
+    without_zeros(const Epetra_CrsMatrix &A)
+    {
+      const int        n_rows = A.NumMyRows();
+      std::vector<int> counts(n_rows, 0);
+      for (int i = 0; i < n_rows; ++i)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(i, length, values, columns);
+          for (int k = 0; k < length; ++k)
+            counts[i] += (values[k] != 0.);
+        }
+      auto B = std::make_unique<Epetra_CrsMatrix>(
+        Copy, A.RowMap(), A.ColMap(), counts.data(), true);
+      std::vector<int>    kept_columns;
+      std::vector<double> kept_values;
+      for (int i = 0; i < n_rows; ++i)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(i, length, values, columns);
+          kept_columns.clear();
+          kept_values.clear();
+          for (int k = 0; k < length; ++k)
+            if (values[k] != 0.)
+              {
+                kept_columns.push_back(columns[k]);
+                kept_values.push_back(values[k]);
+              }
+          B->InsertMyValues(i,
+                            kept_columns.size(),
+                            kept_values.data(),
+                            kept_columns.data());
+        }
+      B->FillComplete(A.DomainMap(), A.RangeMap());
+      return B;
+    }
   } // namespace
 
 
@@ -62,7 +112,8 @@ namespace densify
       const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
       if (!on_one_rank || A.Comm().NumProc() == 1)
         {
-          problem.SetOperator(const_cast<Epetra_CrsMatrix *>(&A));
+          nonzeros = without_zeros(A);
+          problem.SetOperator(nonzeros.get());
           solver = std::make_unique<Amesos_Mumps>(problem);
           check_mumps(solver->SymbolicFactorization(), "analysis");
           check_mumps(solver->NumericFactorization(), "factorization");
@@ -88,11 +139,12 @@ namespace densify
               int    *columns;
               gathered.ExtractMyRowView(i, length, values, columns);
               for (int k = 0; k < length; ++k)
-                {
-                  rows.push_back(gathered.GRID(i) + 1);
-                  cols.push_back(gathered.GCID(columns[k]) + 1);
-                  entries.push_back(values[k]);
-                }
+                if (values[k] != 0.) // see without_zeros()
+                  {
+                    rows.push_back(gathered.GRID(i) + 1);
+                    cols.push_back(gathered.GCID(columns[k]) + 1);
+                    entries.push_back(values[k]);
+                  }
             }
           mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
           mumps.par          = 1;
@@ -175,9 +227,10 @@ namespace densify
       return dynamic_cast<const Epetra_MpiComm &>(A.Comm()).Comm();
     }
 
-    /// MUMPS on all ranks.
-    Epetra_LinearProblem          problem;
-    std::unique_ptr<Amesos_Mumps> solver;
+    /// MUMPS on all ranks, given the matrix without its zero entries.
+    std::unique_ptr<Epetra_CrsMatrix> nonzeros;
+    Epetra_LinearProblem              problem;
+    std::unique_ptr<Amesos_Mumps>     solver;
 
     /// Sequential MUMPS on rank 0: all rows there, the maps between the
     /// distributed vectors and those, and MUMPS's data (rank 0 only).
