@@ -498,7 +498,9 @@ namespace densify
                         output.verbose,
                         "Print the residual of every Newton iteration, and "
                         "of every line-search trial with the largest tool "
-                        "and particle penetration.");
+                        "and particle penetration; and for every new "
+                        "factorization of the direct solvers MUMPS's flops, "
+                        "factor entries and largest front.");
       prm.add_parameter(
         "Checkpoint interval",
         output.checkpoint_interval,

@@ -669,7 +669,8 @@ namespace densify
         double phi0;
         {
           residual *= -1.;
-          increment = 0;
+          increment                     = 0;
+          const unsigned int factorized = linear_solver->n_factorizations();
           linear_iterations +=
             linear_solver->solve(tangent,
                                  increment,
@@ -677,6 +678,10 @@ namespace densify
                                  prm.solver.adaptive_linear_tolerance ?
                                    std::max(eta, prm.solver.linear_tolerance) :
                                    0.);
+          if (prm.output.verbose &&
+              linear_solver->n_factorizations() != factorized)
+            pcout << "      factorization: "
+                  << linear_solver->factorization_statistics() << std::endl;
           // R.du, with residual = -R here
           phi0 = -(residual * increment);
         }

@@ -22,6 +22,7 @@
 #include <ml_MultiLevelPreconditioner.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -178,6 +179,38 @@ namespace densify
       // every rank throws, or none
       error = std::min(dealii::Utilities::MPI::min(error, comm(A)), 0);
       check_mumps(error, "factorization (on rank 0)");
+    }
+
+    /// MUMPS's statistics of the factorization (INFOG(9), INFOG(11),
+    /// RINFOG(3)), the same on all ranks.
+    std::string
+    statistics() const
+    {
+      const Epetra_Comm &comm = problem.GetOperator() ?
+                                  problem.GetOperator()->Comm() :
+                                  root_map->Comm();
+      // factor entries (negative: millions), largest front, flops
+      double info[3] = {0., 0., 0.};
+      if (solver)
+        {
+          info[0] = solver->GetINFOG()[8];
+          info[1] = solver->GetINFOG()[10];
+          info[2] = solver->GetRINFOG()[2];
+        }
+      else if (initialised)
+        {
+          info[0] = mumps.infog[8];
+          info[1] = mumps.infog[10];
+          info[2] = mumps.rinfog[2];
+        }
+      if (!solver)
+        comm.Broadcast(info, 3, 0);
+      const double       entries = info[0] < 0 ? -1e6 * info[0] : info[0];
+      std::ostringstream out;
+      out << std::setprecision(3) << info[2] / 1e9 << " GFlop, "
+          << entries / 1e6 << " M factor entries, largest front "
+          << static_cast<long>(info[1]);
+      return out.str();
     }
 
     ~MumpsFactorization()
@@ -545,6 +578,14 @@ namespace densify
     factorization.reset();
     factorization = std::make_unique<MumpsFactorization>(matrix, reproducible);
     ++n_factorized;
+  }
+
+
+
+  std::string
+  LinearSolver::factorization_statistics() const
+  {
+    return factorization ? factorization->statistics() : std::string();
   }
 
 

@@ -38,3 +38,22 @@ for run in reuse reuse2 adaptive; do
   "$NUMDIFF" -r 1e-6 -a 1e-8 -s ', \n' a.csv b.csv
 done
 tail -n 1 a.csv
+
+# MUMPS is given the tangent without the zero entries that the contact
+# pattern reserves for candidate facets: in the first step, where the
+# spheres touch at points, no front of the factorization spans more than
+# one particle's DoFs (with the zeros, fronts of 483 against 276 DoFs per
+# particle; doc/performance.md). Both ways of running MUMPS on 2 ranks, and
+# 1 rank.
+for run in "1 true" "2 true" "2 false"; do
+  set -- $run
+  rc=0
+  "$MPIEXEC" --oversubscribe -np "$1" "$DENSIFY" "$scene" "${common[@]}" \
+    --set "Output/Directory=fronts$1$2" --set "Output/Verbose=true" \
+    --set "Solver/Reproducible=$2" --stop-after 1 > "fronts$1$2.log" || rc=$?
+  [ "$rc" -eq 3 ] # stopped by --stop-after
+  read -r particles dofs < <(sed -n 's/^Densify: \([0-9]*\) particle(s), [0-9]* tetrahedra, \([0-9]*\) DoFs.*/\1 \2/p' "fronts$1$2.log")
+  front=$(sed -n 's/.*largest front \([0-9]*\).*/\1/p' "fronts$1$2.log" | sort -n | tail -n 1)
+  echo "$1 rank(s), Reproducible=$2: largest front $front, $((dofs / particles)) DoFs per particle"
+  [ -n "$front" ] && [ "$front" -le $((dofs / particles)) ]
+done

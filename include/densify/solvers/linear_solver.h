@@ -69,6 +69,10 @@ namespace densify
       return n_factorized;
     }
 
+    /// MUMPS's statistics of the last factorization (flops, factor entries,
+    /// largest front), or an empty string if there is none.
+    std::string
+    factorization_statistics() const;
     /// Number of solves that needed the GMRES fallback.
     unsigned int
     n_gmres_fallbacks() const
