@@ -213,9 +213,13 @@ namespace densify
     setup_matrix();
 
     /// Residual (and tangent if @p with_matrix) at the current solution;
-    /// @p tangent_margin as in ToolContact::assemble().
+    /// @p tangent_margin as in ToolContact::assemble(). The particle contact
+    /// search is refreshed first if @p with_matrix or @p search (only a
+    /// tangent needs a new matrix pattern for new couplings).
     AssemblyResult
-    assemble(const bool with_matrix, const double tangent_margin = 0.);
+    assemble(const bool   with_matrix,
+             const double tangent_margin = 0.,
+             const bool   search         = false);
 
     /// Newton with line search for fixed multipliers; the first tangent uses
     /// the contact predictor @p margin (mm). Returns the number of Newton and
