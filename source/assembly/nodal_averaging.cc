@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace densify
@@ -192,13 +193,129 @@ namespace densify
 
 
   void
-  NodalAveraging::add_sparsity(
-    TrilinosWrappers::SparsityPattern &sparsity) const
+  NodalAveraging::add_sparsity(TrilinosWrappers::SparsityPattern &sparsity)
   {
+    // a new pattern: the placement of the blocks is made anew
+    placement.valid = false;
     for (const Patch &patch : patches)
       if (patch.touched)
         for (const types::global_dof_index row : patch.dofs)
           sparsity.add_entries(row, patch.dofs.begin(), patch.dofs.end(), true);
+  }
+
+
+
+  bool
+  NodalAveraging::place(const TrilinosWrappers::SparseMatrix &A)
+  {
+    const Epetra_CrsMatrix &E = A.trilinos_matrix();
+    placement.valid           = false;
+    if (!E.Filled())
+      return false;
+    placement.row_start.assign(1, 0);
+    placement.entry_start.assign(1, 0);
+    placement.rows.clear();
+    placement.entries.clear();
+    std::vector<std::pair<int, unsigned int>> columns;
+    // one block: its rows and, by merging its sorted columns with each row's
+    // indices, the index of each entry in its row
+    const auto place_block = [&](const types::global_dof_index *dofs,
+                                 const unsigned int             n) {
+      columns.resize(n);
+      bool local = true;
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          columns[j] = {E.ColMap().LID(static_cast<int>(dofs[j])), j};
+          local      = local && columns[j].first >= 0;
+        }
+      std::sort(columns.begin(), columns.end());
+      const std::size_t base = placement.entries.size();
+      placement.entries.resize(base + std::size_t(n) * n, 0);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          // rows owned elsewhere (or a column this rank does not hold) go
+          // through deal.II's add()
+          const int row =
+            local ? E.RowMap().LID(static_cast<int>(dofs[i])) : -1;
+          placement.rows.push_back(row);
+          if (row < 0)
+            continue;
+          int     length;
+          double *values;
+          int    *indices;
+          E.ExtractMyRowView(row, length, values, indices);
+          if (length > std::numeric_limits<std::uint16_t>::max() + 1)
+            return false;
+          int k = 0;
+          for (const auto &[column, j] : columns)
+            {
+              while (k < length && indices[k] < column)
+                ++k;
+              int position = k;
+              if (k == length || indices[k] != column)
+                {
+                  const int *found =
+                    std::find(indices, indices + length, column);
+                  if (found == indices + length)
+                    throw std::runtime_error(
+                      "nodal averaging: an entry is missing from the "
+                      "sparsity pattern (internal error)");
+                  position = found - indices;
+                }
+              placement.entries[base + std::size_t(i) * n + j] = position;
+            }
+        }
+      placement.row_start.push_back(placement.rows.size());
+      placement.entry_start.push_back(placement.entries.size());
+      return true;
+    };
+    const auto empty_block = [&]() {
+      placement.row_start.push_back(placement.rows.size());
+      placement.entry_start.push_back(placement.entries.size());
+    };
+    for (const Cell &c : cells)
+      if (!c.owned)
+        empty_block();
+      else if (!place_block(c.dofs.data(), 12))
+        return false;
+    for (const Patch &patch : patches)
+      if (!patch.touched)
+        empty_block();
+      else if (!place_block(patch.dofs.data(), patch.dofs.size()))
+        return false;
+    placement.valid = true;
+    return true;
+  }
+
+
+
+  void
+  NodalAveraging::add_placed(TrilinosWrappers::SparseMatrix &A,
+                             const unsigned int              block,
+                             const types::global_dof_index  *dofs,
+                             const FullMatrix<double>       &M) const
+  {
+    Epetra_CrsMatrix  &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    const std::size_t  first = placement.row_start[block];
+    const unsigned int n     = placement.row_start[block + 1] - first;
+    const std::uint16_t *entry =
+      &placement.entries[placement.entry_start[block]];
+    for (unsigned int i = 0; i < n; ++i, entry += n)
+      {
+        const int row = placement.rows[first + i];
+        if (row < 0)
+          {
+            A.add(dofs[i], n, dofs, &M(i, 0), false);
+            continue;
+          }
+        int     length;
+        double *values;
+        int    *indices;
+        E.ExtractMyRowView(row, length, values, indices);
+        const double *m = &M(i, 0);
+        for (unsigned int j = 0; j < n; ++j)
+          values[entry[j]] += m[j];
+      }
   }
 
 
@@ -213,6 +330,9 @@ namespace densify
     TrilinosWrappers::SparseMatrix                     *tangent)
   {
     const Tensor<2, 3> I = unit_symmetric_tensor<3>();
+    // scatter the blocks through their placement in the tangent's pattern
+    const bool placed =
+      tangent != nullptr && (placement.valid || place(*tangent));
 
     // 1. kinematics of every cell (all ranks alike) and the vertex averages
     //    j_a = sum_f V_f j_f / sum_f V_f
@@ -370,7 +490,9 @@ namespace densify
           }
         std::copy(c.dofs.begin(), c.dofs.end(), dofs.begin());
         residual.add(dofs, cell_residual);
-        if (tangent != nullptr)
+        if (placed)
+          add_placed(*tangent, e, c.dofs.data(), cell_matrix);
+        else if (tangent != nullptr)
           add_block(*tangent, dofs, cell_matrix, columns);
       }
 
@@ -426,7 +548,13 @@ namespace densify
                   (sf.dj[i] * sf.dj[j] / sf.j -
                    sf.j * sf.h[i][cf.component[j]] * sf.h[j][cf.component[i]]);
           }
-        add_block(*tangent, patch.dofs, patch_matrix, columns);
+        if (placed)
+          add_placed(*tangent,
+                     cells.size() + a,
+                     patch.dofs.data(),
+                     patch_matrix);
+        else
+          add_block(*tangent, patch.dofs, patch_matrix, columns);
       }
     return "";
   }

@@ -3,6 +3,7 @@
 // (doc/theory.md, section "Volumetric locking").
 #pragma once
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -15,6 +16,7 @@
 #include <densify/parameters.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,7 +63,7 @@ namespace densify
     /// Add the couplings of all DoFs of the cells around every vertex that
     /// touches a locally owned cell.
     void
-    add_sparsity(TrilinosWrappers::SparsityPattern &sparsity) const;
+    add_sparsity(TrilinosWrappers::SparsityPattern &sparsity);
 
     /**
      * Add the internal forces at @p solution (which must hold the values of
@@ -135,5 +137,38 @@ namespace densify
     std::vector<double>    U, U_prime;
     std::vector<double>    j_bar, S, beta;
     std::vector<CellState> state;
+
+    /**
+     * Where the entries of each block (the 12 x 12 matrix of an owned cell,
+     * then the matrix of a touched patch) sit in the tangent's row storage:
+     * per block row its local row (-1 if owned elsewhere), and per entry
+     * its index in that row. Made at the first assembly after
+     * add_sparsity() (a new pattern), so that adding a block is a scatter
+     * rather than a search of each row; the patch blocks alone are about
+     * 70 million additions per tangent on the paper scene.
+     */
+    struct Placement
+    {
+      /// Per block: offsets into rows and entries (one past the last block
+      /// at the end).
+      std::vector<std::size_t>   row_start, entry_start;
+      std::vector<int>           rows;
+      std::vector<std::uint16_t> entries;
+      /// Made for the current pattern?
+      bool valid = false;
+    } placement;
+
+    /// Fill placement for the pattern of @p A; returns false (and leaves it
+    /// invalid) if some row is too long for the 16-bit entry indices.
+    bool
+    place(const TrilinosWrappers::SparseMatrix &A);
+
+    /// A += M on the rows and columns @p dofs of block @p block, through the
+    /// placement.
+    void
+    add_placed(TrilinosWrappers::SparseMatrix &A,
+               const unsigned int              block,
+               const types::global_dof_index  *dofs,
+               const FullMatrix<double>       &M) const;
   };
 } // namespace densify
