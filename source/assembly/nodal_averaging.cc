@@ -23,6 +23,31 @@ namespace densify
   namespace
   {
     /**
+     * The index of @p column in a row's @p indices (of @p length), for the
+     * columns of a block visited in increasing order: @p k is where the
+     * merge with the row's sorted indices stands (start it at 0 for each
+     * row); an index the merge misses is searched for in the whole row.
+     */
+    int
+    position_in_row(const int *indices,
+                    const int  length,
+                    const int  column,
+                    int       &k)
+    {
+      while (k < length && indices[k] < column)
+        ++k;
+      if (k < length && indices[k] == column)
+        return k;
+      const int *found = std::find(indices, indices + length, column);
+      if (found == indices + length)
+        throw std::runtime_error("nodal averaging: an entry is missing from "
+                                 "the sparsity pattern (internal error)");
+      return found - indices;
+    }
+
+
+
+    /**
      * A += M on the rows and columns @p dofs. Locally owned rows are added
      * straight into the Epetra row storage by merging the block's columns,
      * sorted by local column index, with the row's sorted indices: the patch
@@ -67,22 +92,7 @@ namespace densify
           E.ExtractMyRowView(row, length, values, indices);
           int k = 0;
           for (const auto &[column, j] : columns)
-            {
-              while (k < length && indices[k] < column)
-                ++k;
-              if (k == length || indices[k] != column)
-                {
-                  const int *found =
-                    std::find(indices, indices + length, column);
-                  if (found == indices + length)
-                    throw std::runtime_error(
-                      "nodal averaging: an entry is missing from the "
-                      "sparsity pattern (internal error)");
-                  values[found - indices] += M(i, j);
-                  continue;
-                }
-              values[k] += M(i, j);
-            }
+            values[position_in_row(indices, length, column, k)] += M(i, j);
         }
     }
   } // namespace
@@ -248,22 +258,8 @@ namespace densify
             return false;
           int k = 0;
           for (const auto &[column, j] : columns)
-            {
-              while (k < length && indices[k] < column)
-                ++k;
-              int position = k;
-              if (k == length || indices[k] != column)
-                {
-                  const int *found =
-                    std::find(indices, indices + length, column);
-                  if (found == indices + length)
-                    throw std::runtime_error(
-                      "nodal averaging: an entry is missing from the "
-                      "sparsity pattern (internal error)");
-                  position = found - indices;
-                }
-              placement.entries[base + std::size_t(i) * n + j] = position;
-            }
+            placement.entries[base + std::size_t(i) * n + j] =
+              position_in_row(indices, length, column, k);
         }
       placement.row_start.push_back(placement.rows.size());
       placement.entry_start.push_back(placement.entries.size());
