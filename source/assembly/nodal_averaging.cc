@@ -316,6 +316,44 @@ namespace densify
 
 
 
+  void
+  NodalAveraging::add_rank_two(TrilinosWrappers::SparseMatrix &A,
+                               const unsigned int              block,
+                               const types::global_dof_index  *dofs,
+                               const double                   *u,
+                               const double                   *v,
+                               const double                   *y,
+                               const double                   *z,
+                               std::vector<double>            &row) const
+  {
+    Epetra_CrsMatrix  &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    const std::size_t  first = placement.row_start[block];
+    const unsigned int n     = placement.row_start[block + 1] - first;
+    const std::uint16_t *entry =
+      &placement.entries[placement.entry_start[block]];
+    for (unsigned int i = 0; i < n; ++i, entry += n)
+      {
+        const int    placed_row = placement.rows[first + i];
+        const double ui = u[i], yi = y[i];
+        if (placed_row < 0)
+          {
+            row.resize(n);
+            for (unsigned int j = 0; j < n; ++j)
+              row[j] = ui * v[j] + yi * z[j];
+            A.add(dofs[i], n, dofs, row.data(), false);
+            continue;
+          }
+        int     length;
+        double *values;
+        int    *indices;
+        E.ExtractMyRowView(placed_row, length, values, indices);
+        for (unsigned int j = 0; j < n; ++j)
+          values[entry[j]] += ui * v[j] + yi * z[j];
+      }
+  }
+
+
+
   std::string
   NodalAveraging::assemble(
     const TrilinosWrappers::MPI::Vector                &solution,
@@ -369,7 +407,11 @@ namespace densify
 
     // 2. owned cells: the material at each corner a with Fbar(j_a); the
     //    cell-local parts of residual and tangent, and per vertex the
-    //    pieces of the patch terms (see doc/theory.md for the derivation)
+    //    pieces of the patch terms (see doc/theory.md for the derivation).
+    //    The shape gradients are constant in a P1 cell, so the four
+    //    corners' terms of the cell matrix are summed first (the material
+    //    tangents weighted by w sc^2, the vectors of the rank-one terms by
+    //    w) and contracted with the gradients once per cell.
     S.assign(patches.size(), 0.);
     beta.assign(patches.size(), 0.);
     std::fill(U.begin(), U.end(), 0.);
@@ -377,11 +419,11 @@ namespace densify
     FullMatrix<double>                        cell_matrix(12, 12);
     Vector<double>                            cell_residual(12);
     std::vector<types::global_dof_index>      dofs(12);
-    std::array<double, 12>                    t, r, x, x_prime;
+    std::array<double, 12>                    t, r, x, x_prime, X, X_prime;
     std::array<Tensor<2, 3>, 12>              A_grad;
     std::vector<std::pair<int, unsigned int>> columns;
     Tensor<2, 3>                              P;
-    Tensor<4, 3>                              A;
+    Tensor<4, 3>                              A, A_sum;
     for (unsigned int e = 0; e < cells.size(); ++e)
       {
         const Cell &c = cells[e];
@@ -394,8 +436,12 @@ namespace densify
         // t_i = d(ln J)/du_i (finite strain) or d(div u)/du_i
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? s.dj[i] / s.j : s.dj[i]);
-        cell_matrix   = 0;
         cell_residual = 0;
+        A_sum         = 0;
+        X.fill(0.);
+        X_prime.fill(0.);
+        // the corners' sums of w gamma and of w p
+        double gamma_sum = 0., p_sum = 0.;
         for (unsigned int v = 0; v < 4; ++v)
           {
             const unsigned int a = c.vertex[v];
@@ -417,11 +463,13 @@ namespace densify
             const std::size_t k = std::size_t(e) * 4 + v;
             try
               {
-                material.evaluate(F_bar,
-                                  committed ? &(*committed)[k] : nullptr,
-                                  trial ? &(*trial)[k] : nullptr,
-                                  P,
-                                  A);
+                const MaterialState *old =
+                  committed ? &(*committed)[k] : nullptr;
+                MaterialState *now = trial ? &(*trial)[k] : nullptr;
+                if (tangent != nullptr)
+                  material.evaluate(F_bar, old, now, P, A);
+                else
+                  material.stress(F_bar, old, now, P);
               }
             catch (const std::exception &error)
               {
@@ -459,21 +507,18 @@ namespace densify
                   (finite ? sc * sc / 3. * a_i + sc / 3. * r[i] : a_i / 3.);
                 x_prime[i] =
                   (finite ? sc * sc / 3. * b_i + sc / 3. * r[i] : b_i / 3.);
-                for (unsigned int k2 = 0; k2 < 3; ++k2)
-                  for (unsigned int J = 0; J < 3; ++J)
-                    A_grad[i][k2][J] = A[k2][J][c.component[i]] * c.grad[i];
+                X[i] += w * x[i];
+                X_prime[i] += w * x_prime[i];
               }
-            const double sc2 = sc * sc;
-            for (unsigned int i = 0; i < 12; ++i)
-              for (unsigned int j = 0; j < 12; ++j)
-                {
-                  double kij = sc2 * (A_grad[j][c.component[i]] * c.grad[i]) -
-                               x[i] * t[j] - t[i] * x_prime[j] +
-                               gamma * t[i] * t[j];
-                  if (finite)
-                    kij += p * s.h[i][c.component[j]] * s.h[j][c.component[i]];
-                  cell_matrix(i, j) += w * kij;
-                }
+            // sum_v w sc^2 A_v
+            const double weight = w * sc * sc;
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int J = 0; J < 3; ++J)
+                for (unsigned int k2 = 0; k2 < 3; ++k2)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    A_sum[i][J][k2][L] += weight * A[i][J][k2][L];
+            gamma_sum += w * gamma;
+            p_sum += w * p;
             const Patch &patch = patches[a];
             for (unsigned int i = 0; i < 12; ++i)
               {
@@ -486,16 +531,36 @@ namespace densify
           }
         std::copy(c.dofs.begin(), c.dofs.end(), dofs.begin());
         residual.add(dofs, cell_residual);
+        if (tangent == nullptr)
+          continue;
+
+        // the cell matrix: sum_v w [sc^2 g_i A g_j - x_i t_j - t_i x'_j +
+        // gamma t_i t_j + p h_i[c_j] h_j[c_i]]
+        for (unsigned int j = 0; j < 12; ++j)
+          for (unsigned int k2 = 0; k2 < 3; ++k2)
+            for (unsigned int J = 0; J < 3; ++J)
+              A_grad[j][k2][J] = A_sum[k2][J][c.component[j]] * c.grad[j];
+        for (unsigned int i = 0; i < 12; ++i)
+          for (unsigned int j = 0; j < 12; ++j)
+            {
+              double kij = A_grad[j][c.component[i]] * c.grad[i] - X[i] * t[j] -
+                           t[i] * X_prime[j] + gamma_sum * t[i] * t[j];
+              if (finite)
+                kij += p_sum * s.h[i][c.component[j]] * s.h[j][c.component[i]];
+              cell_matrix(i, j) = kij;
+            }
         if (placed)
           add_placed(*tangent, e, c.dofs.data(), cell_matrix);
-        else if (tangent != nullptr)
+        else
           add_block(*tangent, dofs, cell_matrix, columns);
       }
 
     // 3. patch terms: with b = d j_a / du (nonzero on all DoFs of the
     //    patch), the residual gets S_a b and the tangent
-    //    U b^T + b U'^T + beta b b^T + S_a sum_f c_f d^2 J_f
-    std::vector<double> b;
+    //    U b^T + b U'^T + beta b b^T + S_a sum_f c_f d^2 J_f. The last sum
+    //    is gathered per cell below; the rank-three rest is added row by
+    //    row, u_i b^T + b_i (U' + beta b)^T, straight into the placement.
+    std::vector<double> b, b_shifted, row;
     Vector<double>      patch_residual;
     FullMatrix<double>  patch_matrix;
     for (unsigned int a = 0; a < patches.size(); ++a)
@@ -519,38 +584,64 @@ namespace densify
         if (tangent == nullptr)
           continue;
 
-        patch_matrix.reinit(n, n);
         const double *u  = &U[patch.offset];
         const double *up = &U_prime[patch.offset];
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            patch_matrix(i, j) =
-              u[i] * b[j] + b[i] * up[j] + beta[a] * b[i] * b[j];
-        // second derivative of j_a (finite strain): d^2 J_f = J_f (t t^T -
-        // T) with T_ij = h_i[c_j] h_j[c_i]
-        for (unsigned int slot = 0; slot < patch.cells.size(); ++slot)
-          {
-            const unsigned int f = patch.cells[slot];
-            if (!materials[cells[f].material]->finite_strain() || S[a] == 0.)
-              continue;
-            const Cell      &cf          = cells[f];
-            const CellState &sf          = state[f];
-            const double     coefficient = S[a] * cf.volume / patch.volume;
-            const auto      &pos         = patch.position[slot];
-            for (unsigned int i = 0; i < 12; ++i)
-              for (unsigned int j = 0; j < 12; ++j)
-                patch_matrix(pos[i], pos[j]) +=
-                  coefficient *
-                  (sf.dj[i] * sf.dj[j] / sf.j -
-                   sf.j * sf.h[i][cf.component[j]] * sf.h[j][cf.component[i]]);
-          }
+        b_shifted.resize(n);
+        for (unsigned int j = 0; j < n; ++j)
+          b_shifted[j] = up[j] + beta[a] * b[j];
         if (placed)
-          add_placed(*tangent,
-                     cells.size() + a,
-                     patch.dofs.data(),
-                     patch_matrix);
+          add_rank_two(*tangent,
+                       cells.size() + a,
+                       patch.dofs.data(),
+                       u,
+                       b.data(),
+                       b.data(),
+                       b_shifted.data(),
+                       row);
         else
-          add_block(*tangent, patch.dofs, patch_matrix, columns);
+          {
+            patch_matrix.reinit(n, n);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                patch_matrix(i, j) = u[i] * b[j] + b[i] * b_shifted[j];
+            add_block(*tangent, patch.dofs, patch_matrix, columns);
+          }
+      }
+    if (tangent == nullptr)
+      return "";
+
+    // 4. the second derivative of the vertex averages (finite strain):
+    //    sum_a S_a sum_{f in patch a} V_f / V_a d^2 J_f, gathered per cell
+    //    f as C_f d^2 J_f with C_f = V_f sum_{a of f} S_a / V_a and
+    //    d^2 J_f = J_f (t t^T - T), T_ij = h_i[c_j] h_j[c_i]. S_a holds
+    //    this rank's part, so a cell owned elsewhere next to an owned one
+    //    contributes here too.
+    for (unsigned int f = 0; f < cells.size(); ++f)
+      {
+        const Cell &cf = cells[f];
+        if (!materials[cf.material]->finite_strain())
+          continue;
+        double C = 0.;
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            const Patch &patch = patches[cf.vertex[v]];
+            if (patch.touched && S[cf.vertex[v]] != 0.)
+              C += S[cf.vertex[v]] / patch.volume;
+          }
+        if (C == 0.)
+          continue;
+        C *= cf.volume;
+        const CellState &sf = state[f];
+        for (unsigned int i = 0; i < 12; ++i)
+          for (unsigned int j = 0; j < 12; ++j)
+            cell_matrix(i, j) =
+              C * (sf.dj[i] * sf.dj[j] / sf.j -
+                   sf.j * sf.h[i][cf.component[j]] * sf.h[j][cf.component[i]]);
+        std::copy(cf.dofs.begin(), cf.dofs.end(), dofs.begin());
+        if (placed && cf.owned)
+          add_placed(*tangent, f, cf.dofs.data(), cell_matrix);
+        else
+          add_block(*tangent, dofs, cell_matrix, columns);
       }
     return "";
   }

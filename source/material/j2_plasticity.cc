@@ -211,6 +211,29 @@ namespace densify
                          Tensor<2, 3>        &P,
                          Tensor<4, 3>        &A) const
   {
+    compute(F, committed, trial, P, &A);
+  }
+
+
+
+  void
+  J2Plasticity::stress(const Tensor<2, 3>  &F,
+                       const MaterialState *committed,
+                       MaterialState       *trial,
+                       Tensor<2, 3>        &P) const
+  {
+    compute(F, committed, trial, P, nullptr);
+  }
+
+
+
+  void
+  J2Plasticity::compute(const Tensor<2, 3>  &F,
+                        const MaterialState *committed,
+                        MaterialState       *trial,
+                        Tensor<2, 3>        &P,
+                        Tensor<4, 3>        *A) const
+  {
     const double J = determinant(F);
     if (!(J > 0.))
       throw std::domain_error("J2 plasticity: det F = " + std::to_string(J) +
@@ -223,8 +246,12 @@ namespace densify
     // spectral decomposition be_tr = sum_a x_a n_a (x) n_a.
     const Tensor<2, 3> Finv = invert(F);
     const Tensor<2, 3> G    = F * old.Cp_inv;
-    const auto         eig  = eigenvectors(symmetrize(G * transpose(F)),
-                                  SymmetricTensorEigenvectorMethod::jacobi);
+    // QL with implicit shifts: orthonormal eigenvectors also for equal
+    // eigenvalues (be = I at rest), and at about half the cost of Jacobi
+    // rotations (doc/performance.md, "Assembly kernels")
+    const auto eig =
+      eigenvectors(symmetrize(G * transpose(F)),
+                   SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
 
     double Q[3][3]; // Q[i][a] = (n_a)_i
     double x[3], eps[3];
@@ -299,57 +326,62 @@ namespace densify
         P[i][J_] = tau[0] * Q[i][0] * V[0][J_] + tau[1] * Q[i][1] * V[1][J_] +
                    tau[2] * Q[i][2] * V[2][J_];
 
-    // Derivative of the isotropic function tau(be_tr) in the principal
-    // basis: d tau'_aa = sum_c D_ac / (2 x_c) d be'_cc and, for a != b,
-    // d tau'_ab = theta_ab d be'_ab with theta_ab = (tau_a - tau_b) /
-    // (x_a - x_b) = 2 mu_bar (eps_a - eps_b) / (x_a - x_b), evaluated
-    // without cancellation (limit mu_bar / x_b for equal stretches).
-    // With d be' = Q^T (dF G^T + G dF^T) Q the six distinct derivatives
-    // T^{ab}_kL = d tau'_ab / dF_kL are assembled, then
-    // A_iJkL = sum_ab Q_ia V_bJ T^{ab}_kL - P_iL F^{-1}_Jk.
-    constexpr unsigned int pair_a[6] = {0, 1, 2, 0, 0, 1};
-    constexpr unsigned int pair_b[6] = {0, 1, 2, 1, 2, 2};
-    double                 T[6][3][3], W[6][3][3];
-    for (unsigned int m = 0; m < 6; ++m)
+    // the tangent only where it is asked for (not for a residual alone)
+    if (A != nullptr)
       {
-        const unsigned int a = pair_a[m], b = pair_b[m];
-        if (a == b)
+        // Derivative of the isotropic function tau(be_tr) in the principal
+        // basis: d tau'_aa = sum_c D_ac / (2 x_c) d be'_cc and, for a != b,
+        // d tau'_ab = theta_ab d be'_ab with theta_ab = (tau_a - tau_b) /
+        // (x_a - x_b) = 2 mu_bar (eps_a - eps_b) / (x_a - x_b), evaluated
+        // without cancellation (limit mu_bar / x_b for equal stretches).
+        // With d be' = Q^T (dF G^T + G dF^T) Q the six distinct derivatives
+        // T^{ab}_kL = d tau'_ab / dF_kL are assembled, then
+        // A_iJkL = sum_ab Q_ia V_bJ T^{ab}_kL - P_iL F^{-1}_Jk.
+        constexpr unsigned int pair_a[6] = {0, 1, 2, 0, 0, 1};
+        constexpr unsigned int pair_b[6] = {0, 1, 2, 1, 2, 2};
+        double                 T[6][3][3], W[6][3][3];
+        for (unsigned int m = 0; m < 6; ++m)
           {
-            double c[3];
-            for (unsigned int d = 0; d < 3; ++d)
-              c[d] = D[a][d] / x[d];
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int L = 0; L < 3; ++L)
-                T[m][k][L] = c[0] * Q[k][0] * U[L][0] +
-                             c[1] * Q[k][1] * U[L][1] +
-                             c[2] * Q[k][2] * U[L][2];
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int J_ = 0; J_ < 3; ++J_)
-                W[m][i][J_] = Q[i][a] * V[a][J_];
+            const unsigned int a = pair_a[m], b = pair_b[m];
+            if (a == b)
+              {
+                double c[3];
+                for (unsigned int d = 0; d < 3; ++d)
+                  c[d] = D[a][d] / x[d];
+                for (unsigned int k = 0; k < 3; ++k)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    T[m][k][L] = c[0] * Q[k][0] * U[L][0] +
+                                 c[1] * Q[k][1] * U[L][1] +
+                                 c[2] * Q[k][2] * U[L][2];
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int J_ = 0; J_ < 3; ++J_)
+                    W[m][i][J_] = Q[i][a] * V[a][J_];
+              }
+            else
+              {
+                const double theta =
+                  mu_bar * z_over_expm1(2. * (eps[a] - eps[b])) / x[b];
+                for (unsigned int k = 0; k < 3; ++k)
+                  for (unsigned int L = 0; L < 3; ++L)
+                    T[m][k][L] =
+                      theta * (Q[k][a] * U[L][b] + Q[k][b] * U[L][a]);
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int J_ = 0; J_ < 3; ++J_)
+                    W[m][i][J_] = Q[i][a] * V[b][J_] + Q[i][b] * V[a][J_];
+              }
           }
-        else
-          {
-            const double theta =
-              mu_bar * z_over_expm1(2. * (eps[a] - eps[b])) / x[b];
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int L = 0; L < 3; ++L)
-                T[m][k][L] = theta * (Q[k][a] * U[L][b] + Q[k][b] * U[L][a]);
-            for (unsigned int i = 0; i < 3; ++i)
-              for (unsigned int J_ = 0; J_ < 3; ++J_)
-                W[m][i][J_] = Q[i][a] * V[b][J_] + Q[i][b] * V[a][J_];
-          }
-      }
 
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int J_ = 0; J_ < 3; ++J_)
-        for (unsigned int k = 0; k < 3; ++k)
-          for (unsigned int L = 0; L < 3; ++L)
-            {
-              double v = -P[i][L] * Finv[J_][k];
-              for (unsigned int m = 0; m < 6; ++m)
-                v += W[m][i][J_] * T[m][k][L];
-              A[i][J_][k][L] = v;
-            }
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int J_ = 0; J_ < 3; ++J_)
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int L = 0; L < 3; ++L)
+                {
+                  double v = -P[i][L] * Finv[J_][k];
+                  for (unsigned int m = 0; m < 6; ++m)
+                    v += W[m][i][J_] * T[m][k][L];
+                  (*A)[i][J_][k][L] = v;
+                }
+      }
 
     // History: Cp^{-1} = F^{-1} be F^{-T} with be = exp(2 eps_e).
     if (trial)

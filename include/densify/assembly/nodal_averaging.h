@@ -170,5 +170,18 @@ namespace densify
                const unsigned int              block,
                const types::global_dof_index  *dofs,
                const FullMatrix<double>       &M) const;
+
+    /// A += u v^T + y z^T on the rows and columns @p dofs of block
+    /// @p block, through the placement, without forming the matrix; @p row
+    /// is work space for rows owned elsewhere.
+    void
+    add_rank_two(TrilinosWrappers::SparseMatrix &A,
+                 const unsigned int              block,
+                 const types::global_dof_index  *dofs,
+                 const double                   *u,
+                 const double                   *v,
+                 const double                   *y,
+                 const double                   *z,
+                 std::vector<double>            &row) const;
   };
 } // namespace densify

@@ -119,6 +119,14 @@ namespace densify
              Tensor<2, 3>        &P,
              Tensor<4, 3>        &A) const override;
 
+    /// The return mapping of evaluate() without the consistent tangent:
+    /// the stress @p P and the updated state @p trial only.
+    void
+    stress(const Tensor<2, 3>  &F,
+           const MaterialState *committed,
+           MaterialState       *trial,
+           Tensor<2, 3>        &P) const override;
+
     /// Young's modulus (MPa).
     double
     youngs_modulus() const override
@@ -144,6 +152,14 @@ namespace densify
     hardening_modulus(const double eps_p) const;
 
   private:
+    /// The return mapping; the tangent into @p A unless it is nullptr.
+    void
+    compute(const Tensor<2, 3>  &F,
+            const MaterialState *committed,
+            MaterialState       *trial,
+            Tensor<2, 3>        &P,
+            Tensor<4, 3>        *A) const;
+
     /// Plastic multiplier (increment of eps_p) of the radial return for a
     /// trial von Mises stress @p q_trial > sigma_y(@p eps_p_old).
     double

@@ -76,6 +76,21 @@ namespace densify
              Tensor<2, 3>        &P,
              Tensor<4, 3>        &A) const = 0;
 
+    /**
+     * Evaluate P(F) and the updated state alone, for a residual without its
+     * tangent. The default calls evaluate(); laws whose tangent costs much
+     * more than their stress override it.
+     */
+    virtual void
+    stress(const Tensor<2, 3>  &F,
+           const MaterialState *committed,
+           MaterialState       *trial,
+           Tensor<2, 3>        &P) const
+    {
+      Tensor<4, 3> A;
+      evaluate(F, committed, trial, P, A);
+    }
+
     /// True if the law uses finite-strain kinematics (then the current
     /// volume is det F dV; for small strain it is (1 + tr grad u) dV).
     virtual bool
