@@ -198,6 +198,15 @@ namespace densify
     U.resize(offset);
     U_prime.resize(offset);
     state.resize(cells.size());
+    std::vector<bool> needed(cells.size(), false);
+    for (const Cell &c : cells)
+      if (c.owned)
+        for (const unsigned int a : c.vertex)
+          for (const unsigned int f : patches[a].cells)
+            needed[f] = true;
+    for (unsigned int f = 0; f < cells.size(); ++f)
+      if (needed[f])
+        needed_cells.push_back(f);
   }
 
 
@@ -368,10 +377,11 @@ namespace densify
     const bool placed =
       tangent != nullptr && (placement.valid || place(*tangent));
 
-    // 1. kinematics of every cell (all ranks alike) and the vertex averages
-    //    j_a = sum_f V_f j_f / sum_f V_f
+    // 1. kinematics of the cells around the vertices of owned cells and
+    //    their vertex averages j_a = sum_f V_f j_f / sum_f V_f (complete
+    //    at those vertices, the only ones used below)
     j_bar.assign(patches.size(), 0.);
-    for (unsigned int e = 0; e < cells.size(); ++e)
+    for (const unsigned int e : needed_cells)
       {
         const Cell &c      = cells[e];
         CellState  &s      = state[e];
@@ -616,7 +626,7 @@ namespace densify
     //    d^2 J_f = J_f (t t^T - T), T_ij = h_i[c_j] h_j[c_i]. S_a holds
     //    this rank's part, so a cell owned elsewhere next to an owned one
     //    contributes here too.
-    for (unsigned int f = 0; f < cells.size(); ++f)
+    for (const unsigned int f : needed_cells)
       {
         const Cell &cf = cells[f];
         if (!materials[cf.material]->finite_strain())

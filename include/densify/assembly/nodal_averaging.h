@@ -137,6 +137,9 @@ namespace densify
     std::vector<double>    U, U_prime;
     std::vector<double>    j_bar, S, beta;
     std::vector<CellState> state;
+    /// The cells whose kinematics this rank needs: those in the patch of a
+    /// vertex of a locally owned cell (all cells on one rank).
+    std::vector<unsigned int> needed_cells;
 
     /**
      * Where the entries of each block (the 12 x 12 matrix of an owned cell,
