@@ -11,6 +11,7 @@
 #include <densify/contact/particle_contact.h>
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 
 namespace densify
@@ -264,11 +265,20 @@ namespace densify
     std::vector<BoundingBox<3>> particle_box(n_particles);
     for (unsigned int m = 0; m < facets.size(); ++m)
       {
-        const Facet          &facet = facets[m];
-        std::vector<Point<3>> corners;
-        for (unsigned int k = 0; k < 3; ++k)
-          corners.push_back(x[facet.cell->vertex_index(facet.local_vertex[k])]);
-        facet_box[m] = BoundingBox<3>(corners);
+        const Facet &facet = facets[m];
+        Point<3>     lower = x[facet.cell->vertex_index(facet.local_vertex[0])];
+        Point<3>     upper = lower;
+        for (unsigned int k = 1; k < 3; ++k)
+          {
+            const Point<3> &c =
+              x[facet.cell->vertex_index(facet.local_vertex[k])];
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                lower[d] = std::min(lower[d], c[d]);
+                upper[d] = std::max(upper[d], c[d]);
+              }
+          }
+        facet_box[m] = BoundingBox<3>(std::make_pair(lower, upper));
       }
     for (unsigned int p = 0; p < n_particles; ++p)
       if (first_facet[p + 1] > first_facet[p])
@@ -321,15 +331,20 @@ namespace densify
                 const std::pair<unsigned, unsigned> cells(
                   facets[s].cell->active_cell_index(),
                   facets[m].cell->active_cell_index());
-                wide_couplings.insert(cells);
+                wide_couplings.push_back(cells);
                 if (boxes_overlap(facet_box[s], facet_box[m], margin))
                   {
                     candidates.push_back(m);
-                    couplings.insert(cells);
+                    couplings.push_back(cells);
                   }
               }
           }
         candidate_start.push_back(candidates.size());
+      }
+    for (auto *list : {&couplings, &wide_couplings})
+      {
+        std::sort(list->begin(), list->end());
+        list->erase(std::unique(list->begin(), list->end()), list->end());
       }
     const bool covered = std::includes(pattern_couplings.begin(),
                                        pattern_couplings.end(),
@@ -344,7 +359,16 @@ namespace densify
   void
   ParticleContact::add_couplings(TrilinosWrappers::SparsityPattern &pattern)
   {
-    pattern_couplings.insert(wide_couplings.begin(), wide_couplings.end());
+    {
+      std::vector<std::pair<unsigned, unsigned>> merged;
+      merged.reserve(pattern_couplings.size() + wide_couplings.size());
+      std::set_union(pattern_couplings.begin(),
+                     pattern_couplings.end(),
+                     wide_couplings.begin(),
+                     wide_couplings.end(),
+                     std::back_inserter(merged));
+      pattern_couplings.swap(merged);
+    }
     std::vector<DoFHandler<3>::active_cell_iterator> cell_of(
       dof_handler->get_triangulation().n_active_cells());
     for (const Facet &facet : facets)

@@ -304,9 +304,11 @@ namespace densify
     std::vector<unsigned int> candidate_start, candidates;
     /// Cell couplings (active cell indices) of the candidates, and those of
     /// the pattern made last.
-    std::set<std::pair<unsigned, unsigned>> couplings, pattern_couplings;
+    /// (Sorted vectors without repeats: as sets they cost a heap node per
+    /// entry at every search.)
+    std::vector<std::pair<unsigned, unsigned>> couplings, pattern_couplings;
     /// Cell couplings within pattern_margin_factor times the search margin.
-    std::set<std::pair<unsigned, unsigned>> wide_couplings;
+    std::vector<std::pair<unsigned, unsigned>> wide_couplings;
     /// How much wider than the search margin the pattern couplings reach.
     static constexpr double pattern_margin_factor = 1.5;
 
