@@ -9,6 +9,8 @@
 
 #include <densify/contact/tool_contact.h>
 
+#include <algorithm>
+
 namespace densify
 {
   void
@@ -121,9 +123,61 @@ namespace densify
     std::vector<types::global_dof_index> post_indices;
     Vector<double> post_p, post_slip, post_status, post_weights;
 
+    // A face of linear elements stays flat, so a tool's gap at its points
+    // is at least the smallest gap at its vertices (a plane's gap is linear
+    // on it, the die wall's concave). A face whose vertices are all further
+    // from every tool than the gap at which a point could carry pressure
+    // (lambda / eps) or enter the tangent as predicted has no point in
+    // contact: it is skipped, with the open points' outputs written, unless
+    // surface fields are asked for (in a late step of the paper scene most
+    // faces are far from every tool).
+    const bool   may_skip = fe.degree == 1 && out.post == nullptr;
+    const double margin =
+      out.matrix != nullptr ? std::max(out.tangent_margin, 0.) : 0.;
+    const auto far_from_tools = [&](const unsigned int k) {
+      const auto &[cell, f] = faces[k];
+      const auto   face     = cell->face(f);
+      const double eps      = penalty[cell->material_id()];
+      Point<3>     x[3];
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          x[v] = face->vertex(v);
+          for (unsigned int d = 0; d < 3; ++d)
+            x[v][d] += solution(face->vertex_dof_index(v, d));
+        }
+      for (unsigned int t = 0; t < n_tools; ++t)
+        {
+          double lambda_max = 0.;
+          for (unsigned int q = 0; q < n_q; ++q)
+            lambda_max =
+              std::max(lambda_max, lambda[(k * n_q + q) * n_tools + t]);
+          const double needed = std::max(margin, lambda_max / eps);
+          Tensor<1, 3> n;
+          double       curvature;
+          for (unsigned int v = 0; v < 3; ++v)
+            if (!(tool_list[t].gap(x[v], n, curvature) > needed))
+              return false;
+        }
+      return true;
+    };
+
     for (unsigned int k = 0; k < faces.size(); ++k)
       {
         const auto &[cell, f] = faces[k];
+        if (may_skip && far_from_tools(k))
+          {
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int t = 0; t < n_tools; ++t)
+                {
+                  const unsigned int idx = (k * n_q + q) * n_tools + t;
+                  if (out.new_lambda != nullptr)
+                    (*out.new_lambda)[idx] = 0.;
+                  if (out.new_traction != nullptr && friction_on &&
+                      friction_laws[t].mu > 0.)
+                    (*out.new_traction)[idx] = Tensor<1, 3>();
+                }
+            continue;
+          }
         fe_face.reinit(cell, f);
         fe_face[u].get_function_values(solution, u_values);
         if (friction_on)
