@@ -4,7 +4,8 @@
 # sections of the timer table (from log.txt). Issue 5's speed benchmark.
 # Usage (from the source root):
 #   bash benchmarks/scene_speed.sh [scene.prm] [--set "..."]... [--stop-after N]
-# Default scene: prm/seven_spheres_sn.prm. Needs build/densify. The paper's
+# Default scene: prm/seven_spheres_sn.prm. Needs build/densify (or the
+# executable named by DENSIFY, e.g. to compare two builds). The paper's
 # scene at full fidelity takes hours; time its first steps with, e.g.,
 #   bash benchmarks/scene_speed.sh prm/single_layer_sn.prm --stop-after 3
 set -eu
@@ -17,7 +18,7 @@ for np in 1 2; do
   dir=$out/np$np
   # exit code 3: stopped by --stop-after, as asked
   rc=0
-  /usr/bin/time -v mpirun --oversubscribe -np $np "$root/build/densify" "$scene" "$@" \
+  /usr/bin/time -v mpirun --oversubscribe -np $np "${DENSIFY:-$root/build/densify}" "$scene" "$@" \
     --set "Output/Directory=$dir" --set "Output/Interval=0" > "$dir.log" 2> "$dir.time" || rc=$?
   if [ $rc -ne 0 ] && [ $rc -ne 3 ]; then
     echo "densify failed (exit $rc):"; tail -n 3 "$dir.time"; exit $rc

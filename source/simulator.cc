@@ -493,12 +493,15 @@ namespace densify
               const unsigned int k = cell->active_cell_index() * n_q + q;
               try
                 {
-                  material.evaluate(F,
-                                    has_history ? &committed_history[k] :
-                                                  nullptr,
-                                    has_history ? &trial_history[k] : nullptr,
-                                    P,
-                                    A);
+                  const MaterialState *old =
+                    has_history ? &committed_history[k] : nullptr;
+                  MaterialState *now =
+                    has_history ? &trial_history[k] : nullptr;
+                  // a residual alone needs no tangent
+                  if (with_matrix)
+                    material.evaluate(F, old, now, P, A);
+                  else
+                    material.stress(F, old, now, P);
                 }
               catch (const std::exception &e)
                 {
