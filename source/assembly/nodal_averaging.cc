@@ -294,11 +294,13 @@ namespace densify
 
 
 
+  template <typename Value>
   void
-  NodalAveraging::add_placed(TrilinosWrappers::SparseMatrix &A,
-                             const unsigned int              block,
-                             const types::global_dof_index  *dofs,
-                             const FullMatrix<double>       &M) const
+  NodalAveraging::add_through_placement(TrilinosWrappers::SparseMatrix &A,
+                                        const unsigned int              block,
+                                        const types::global_dof_index  *dofs,
+                                        const Value                    &value,
+                                        std::vector<double> &row) const
   {
     Epetra_CrsMatrix  &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
     const std::size_t  first = placement.row_start[block];
@@ -307,20 +309,39 @@ namespace densify
       &placement.entries[placement.entry_start[block]];
     for (unsigned int i = 0; i < n; ++i, entry += n)
       {
-        const int row = placement.rows[first + i];
-        if (row < 0)
+        const int placed_row = placement.rows[first + i];
+        if (placed_row < 0)
           {
-            A.add(dofs[i], n, dofs, &M(i, 0), false);
+            row.resize(n);
+            for (unsigned int j = 0; j < n; ++j)
+              row[j] = value(i, j);
+            A.add(dofs[i], n, dofs, row.data(), false);
             continue;
           }
         int     length;
         double *values;
         int    *indices;
-        E.ExtractMyRowView(row, length, values, indices);
-        const double *m = &M(i, 0);
+        E.ExtractMyRowView(placed_row, length, values, indices);
         for (unsigned int j = 0; j < n; ++j)
-          values[entry[j]] += m[j];
+          values[entry[j]] += value(i, j);
       }
+  }
+
+
+
+  void
+  NodalAveraging::add_placed(TrilinosWrappers::SparseMatrix &A,
+                             const unsigned int              block,
+                             const types::global_dof_index  *dofs,
+                             const FullMatrix<double>       &M,
+                             std::vector<double>            &row) const
+  {
+    add_through_placement(
+      A,
+      block,
+      dofs,
+      [&M](const unsigned int i, const unsigned int j) { return M(i, j); },
+      row);
   }
 
 
@@ -335,30 +356,14 @@ namespace densify
                                const double                   *z,
                                std::vector<double>            &row) const
   {
-    Epetra_CrsMatrix  &E = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
-    const std::size_t  first = placement.row_start[block];
-    const unsigned int n     = placement.row_start[block + 1] - first;
-    const std::uint16_t *entry =
-      &placement.entries[placement.entry_start[block]];
-    for (unsigned int i = 0; i < n; ++i, entry += n)
-      {
-        const int    placed_row = placement.rows[first + i];
-        const double ui = u[i], yi = y[i];
-        if (placed_row < 0)
-          {
-            row.resize(n);
-            for (unsigned int j = 0; j < n; ++j)
-              row[j] = ui * v[j] + yi * z[j];
-            A.add(dofs[i], n, dofs, row.data(), false);
-            continue;
-          }
-        int     length;
-        double *values;
-        int    *indices;
-        E.ExtractMyRowView(placed_row, length, values, indices);
-        for (unsigned int j = 0; j < n; ++j)
-          values[entry[j]] += ui * v[j] + yi * z[j];
-      }
+    add_through_placement(
+      A,
+      block,
+      dofs,
+      [=](const unsigned int i, const unsigned int j) {
+        return u[i] * v[j] + y[i] * z[j];
+      },
+      row);
   }
 
 
@@ -432,8 +437,10 @@ namespace densify
     std::array<double, 12>                    t, r, x, x_prime, X, X_prime;
     std::array<Tensor<2, 3>, 12>              A_grad;
     std::vector<std::pair<int, unsigned int>> columns;
-    Tensor<2, 3>                              P;
-    Tensor<4, 3>                              A, A_sum;
+    // work space for the rows of a placed block owned elsewhere
+    std::vector<double> row;
+    Tensor<2, 3>        P;
+    Tensor<4, 3>        A, A_sum;
     for (unsigned int e = 0; e < cells.size(); ++e)
       {
         const Cell &c = cells[e];
@@ -560,7 +567,7 @@ namespace densify
               cell_matrix(i, j) = kij;
             }
         if (placed)
-          add_placed(*tangent, e, c.dofs.data(), cell_matrix);
+          add_placed(*tangent, e, c.dofs.data(), cell_matrix, row);
         else
           add_block(*tangent, dofs, cell_matrix, columns);
       }
@@ -570,7 +577,7 @@ namespace densify
     //    U b^T + b U'^T + beta b b^T + S_a sum_f c_f d^2 J_f. The last sum
     //    is gathered per cell below; the rank-three rest is added row by
     //    row, u_i b^T + b_i (U' + beta b)^T, straight into the placement.
-    std::vector<double> b, b_shifted, row;
+    std::vector<double> b, b_shifted;
     Vector<double>      patch_residual;
     FullMatrix<double>  patch_matrix;
     for (unsigned int a = 0; a < patches.size(); ++a)
@@ -649,7 +656,7 @@ namespace densify
                    sf.j * sf.h[i][cf.component[j]] * sf.h[j][cf.component[i]]);
         std::copy(cf.dofs.begin(), cf.dofs.end(), dofs.begin());
         if (placed && cf.owned)
-          add_placed(*tangent, f, cf.dofs.data(), cell_matrix);
+          add_placed(*tangent, f, cf.dofs.data(), cell_matrix, row);
         else
           add_block(*tangent, dofs, cell_matrix, columns);
       }

@@ -167,16 +167,16 @@ namespace densify
     place(const TrilinosWrappers::SparseMatrix &A);
 
     /// A += M on the rows and columns @p dofs of block @p block, through the
-    /// placement.
+    /// placement; @p row is work space for rows owned elsewhere.
     void
     add_placed(TrilinosWrappers::SparseMatrix &A,
                const unsigned int              block,
                const types::global_dof_index  *dofs,
-               const FullMatrix<double>       &M) const;
+               const FullMatrix<double>       &M,
+               std::vector<double>            &row) const;
 
     /// A += u v^T + y z^T on the rows and columns @p dofs of block
-    /// @p block, through the placement, without forming the matrix; @p row
-    /// is work space for rows owned elsewhere.
+    /// @p block, through the placement, without forming the matrix.
     void
     add_rank_two(TrilinosWrappers::SparseMatrix &A,
                  const unsigned int              block,
@@ -186,5 +186,17 @@ namespace densify
                  const double                   *y,
                  const double                   *z,
                  std::vector<double>            &row) const;
+
+    /// A(i, j) += value(i, j) for the block @p block with rows and columns
+    /// @p dofs: straight into the row storage through the placement, and
+    /// through deal.II's add() (with @p row as work space) for rows owned
+    /// elsewhere.
+    template <typename Value>
+    void
+    add_through_placement(TrilinosWrappers::SparseMatrix &A,
+                          const unsigned int              block,
+                          const types::global_dof_index  *dofs,
+                          const Value                    &value,
+                          std::vector<double>            &row) const;
   };
 } // namespace densify
