@@ -496,7 +496,9 @@ namespace densify
                         Patterns::Integer(0));
       prm.add_parameter("Verbose",
                         output.verbose,
-                        "Print the residual of every Newton iteration, and "
+                        "Print the residual of every Newton iteration with "
+                        "the contact, slipping and yielding points (and how "
+                        "many yielding points changed), and that "
                         "of every line-search trial with the largest tool "
                         "and particle penetration; and for every new "
                         "factorization of the direct solvers MUMPS's flops, "

@@ -653,19 +653,50 @@ namespace densify
     constexpr double eta_max = 1e-2;
     double           eta     = eta_max;
     residual_history.clear();
+    // Output/Verbose: the material points yielding in this increment at the
+    // current iterate, and how many of them changed since the last iterate
+    std::vector<char> was_plastic;
+    const auto        plastic_points = [&]() {
+      unsigned long n = 0, changed = 0;
+      was_plastic.resize(trial_history.size(), 0);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (unsigned int k = 0; k < history_per_cell; ++k)
+            {
+              const std::size_t i =
+                cell->active_cell_index() * history_per_cell + k;
+              const char plastic =
+                trial_history[i].eps_p > committed_history[i].eps_p;
+              n += plastic;
+              changed += (plastic != was_plastic[i]);
+              was_plastic[i] = plastic;
+            }
+      return std::make_pair(Utilities::MPI::sum(n, comm),
+                            Utilities::MPI::sum(changed, comm));
+    };
     for (unsigned int it = 0; it <= prm.solver.max_newton_iterations; ++it)
       {
         residual_history.push_back(current.residual_norm);
         const double target = std::max(tol * current.reference_norm, floor);
         if (prm.output.verbose)
-          pcout << "    newton " << it << ": |R| = " << std::scientific
-                << std::setprecision(3) << current.residual_norm << " (target "
-                << target << "), contact points "
-                << current.contact.n_active + current.particle_contact.n_active
-                << " (slip "
-                << current.contact.n_slip + current.particle_contact.n_slip
-                << "), line search " << std::defaultfloat << line_search_step
-                << std::endl;
+          {
+            pcout << "    newton " << it << ": |R| = " << std::scientific
+                  << std::setprecision(3) << current.residual_norm
+                  << " (target " << target << "), contact points "
+                  << current.contact.n_active +
+                       current.particle_contact.n_active
+                  << " (slip "
+                  << current.contact.n_slip + current.particle_contact.n_slip
+                  << ")";
+            if (has_history)
+              {
+                const auto [n, changed] = plastic_points();
+                pcout << ", yielding points " << n << " (changed " << changed
+                      << ")";
+              }
+            pcout << ", line search " << std::defaultfloat << line_search_step
+                  << std::endl;
+          }
         if (current.residual_norm <= target)
           return {it, linear_iterations};
         if (it == prm.solver.max_newton_iterations)
