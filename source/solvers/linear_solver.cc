@@ -2,6 +2,7 @@
 // rigid-body modes, a direct solver, or GMRES preconditioned by the
 // factorization of an earlier tangent.
 #include <deal.II/base/quadrature.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -116,8 +117,12 @@ namespace densify
           nonzeros = without_zeros(A);
           problem.SetOperator(nonzeros.get());
           solver = std::make_unique<Amesos_Mumps>(problem);
+          Timer timer;
           check_mumps(solver->SymbolicFactorization(), "analysis");
+          analysis_seconds = timer.wall_time();
+          timer.restart();
           check_mumps(solver->NumericFactorization(), "factorization");
+          factorization_seconds = timer.wall_time();
           return;
         }
       const bool root = A.Comm().MyPID() == 0;
@@ -170,9 +175,12 @@ namespace densify
               for (const int job : {1, 2})
                 if (error >= 0)
                   {
+                    Timer timer;
                     mumps.job = job;
                     dmumps_c(&mumps);
                     error = mumps.infog[0];
+                    (job == 1 ? analysis_seconds : factorization_seconds) =
+                      timer.wall_time();
                   }
             }
         }
@@ -189,8 +197,9 @@ namespace densify
       const Epetra_Comm &comm = problem.GetOperator() ?
                                   problem.GetOperator()->Comm() :
                                   root_map->Comm();
-      // factor entries (negative: millions), largest front, flops
-      double info[3] = {0., 0., 0.};
+      // factor entries (negative: millions), largest front, flops, the
+      // wall times of analysis and factorization (on rank 0)
+      double info[5] = {0., 0., 0., analysis_seconds, factorization_seconds};
       if (solver)
         {
           info[0] = solver->GetINFOG()[8];
@@ -203,13 +212,13 @@ namespace densify
           info[1] = mumps.infog[10];
           info[2] = mumps.rinfog[2];
         }
-      if (!solver)
-        comm.Broadcast(info, 3, 0);
+      comm.Broadcast(info, 5, 0);
       const double       entries = info[0] < 0 ? -1e6 * info[0] : info[0];
       std::ostringstream out;
       out << std::setprecision(3) << info[2] / 1e9 << " GFlop, "
           << entries / 1e6 << " M factor entries, largest front "
-          << static_cast<long>(info[1]);
+          << static_cast<long>(info[1]) << "; analysis " << info[3]
+          << " s, factorization " << info[4] << " s";
       return out.str();
     }
 
@@ -273,6 +282,9 @@ namespace densify
     std::vector<double>            entries;
     DMUMPS_STRUC_C                 mumps{};
     bool                           initialised = false;
+
+    /// Wall times of MUMPS's analysis and numerical factorization (s).
+    double analysis_seconds = 0., factorization_seconds = 0.;
   };
 
 
