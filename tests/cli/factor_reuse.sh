@@ -56,4 +56,13 @@ for run in "1 true" "2 true" "2 false"; do
   front=$(sed -n 's/.*largest front \([0-9]*\).*/\1/p' "fronts$1$2.log" | sort -n | tail -n 1)
   echo "$1 rank(s), Reproducible=$2: largest front $front, $((dofs / particles)) DoFs per particle"
   [ -n "$front" ] && [ "$front" -le $((dofs / particles)) ]
+  # the verbose count of yielding material points (one per cell corner with
+  # the nodal-averaged F-bar), summed over the ranks: the converged step's
+  # count is the same on 1 and 2 ranks and at most the number of corners
+  read -r tets < <(sed -n 's/^Densify: [0-9]* particle(s), \([0-9]*\) tetrahedra.*/\1/p' "fronts$1$2.log")
+  yielding=$(sed -n 's/.*yielding points \([0-9]*\) (changed.*/\1/p' "fronts$1$2.log" | tail -n 1)
+  echo "$1 rank(s), Reproducible=$2: $yielding of $((4 * tets)) corner points yield in step 1"
+  [ -n "$yielding" ] && [ "$yielding" -le $((4 * tets)) ]
+  [ -z "${first_yielding:-}" ] && first_yielding=$yielding
+  [ "$yielding" -eq "$first_yielding" ]
 done
