@@ -190,7 +190,8 @@ namespace densify
     }
 
     /// MUMPS's statistics of the factorization (INFOG(9), INFOG(11),
-    /// RINFOG(3)), the same on all ranks.
+    /// RINFOG(3)) and rank 0's wall times of its analysis and numerical
+    /// factorization, the same on all ranks (collective).
     std::string
     statistics() const
     {
