@@ -70,7 +70,8 @@ namespace densify
     }
 
     /// MUMPS's statistics of the last factorization (flops, factor entries,
-    /// largest front), or an empty string if there is none.
+    /// largest front, wall times of analysis and factorization), or an empty
+    /// string if there is none. Collective.
     std::string
     factorization_statistics() const;
     /// Number of solves that needed the GMRES fallback.
