@@ -1171,6 +1171,11 @@ namespace densify
         nearest_corner[q] =
           std::max_element(weight.begin(), weight.end()) - weight.begin();
       }
+    const std::vector<double> j_bar =
+      nodal_averaging ?
+        nodal_averaging->vertex_volume_measures(solution_ghosted,
+                                                particle_material) :
+        std::vector<double>();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -1185,21 +1190,32 @@ namespace densify
           cell_e = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+              Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
               // with the nodal-averaged F-bar the history is kept at the
-              // corners: take the corner nearest to the point. F-bar differs
-              // from F by a volumetric factor only, so the von Mises stress
-              // of F with that history is the corner's
+              // corners: take the corner nearest to the point, and the
+              // material's Fbar there (F alone would give the cell's own,
+              // locking volume change to the pressure)
+              const Material &material =
+                *particle_material[cell->material_id()];
+              if (nodal_averaging)
+                {
+                  const double j_a =
+                    j_bar[cell->vertex_index(nearest_corner[q])];
+                  if (material.finite_strain())
+                    F *= std::cbrt(j_a / determinant(F));
+                  else
+                    F += (j_a - (trace(F) - 2.)) / 3. *
+                         Tensor<2, 3>(unit_symmetric_tensor<3>());
+                }
               const unsigned int k =
                 cell->active_cell_index() * history_per_cell +
                 (nodal_averaging ? nearest_corner[q] : q);
               MaterialState scratch;
-              particle_material[cell->material_id()]->evaluate(
-                F,
-                has_history ? &committed_history[k] : nullptr,
-                has_history ? &scratch : nullptr,
-                P,
-                A);
+              material.evaluate(F,
+                                has_history ? &committed_history[k] : nullptr,
+                                has_history ? &scratch : nullptr,
+                                P,
+                                A);
               const double       vm    = von_mises(P, F);
               const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
               const double       eps_p =

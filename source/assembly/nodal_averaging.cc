@@ -368,6 +368,32 @@ namespace densify
 
 
 
+  std::vector<double>
+  NodalAveraging::vertex_volume_measures(
+    const TrilinosWrappers::MPI::Vector                &solution,
+    const std::vector<std::shared_ptr<const Material>> &materials) const
+  {
+    std::vector<double> averaged(patches.size(), 0.);
+    for (const unsigned int e : needed_cells)
+      {
+        const Cell  &c = cells[e];
+        Tensor<2, 3> F = unit_symmetric_tensor<3>();
+        for (unsigned int i = 0; i < 12; ++i)
+          F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
+        const double j = materials[c.material]->finite_strain() ?
+                           determinant(F) :
+                           trace(F) - 2.;
+        for (unsigned int v = 0; v < 4; ++v)
+          averaged[c.vertex[v]] += c.volume * j;
+      }
+    for (unsigned int a = 0; a < patches.size(); ++a)
+      if (patches[a].volume > 0.)
+        averaged[a] /= patches[a].volume;
+    return averaged;
+  }
+
+
+
   std::string
   NodalAveraging::assemble(
     const TrilinosWrappers::MPI::Vector                &solution,

@@ -25,3 +25,30 @@ for key in ("mean_plastic_strain", "max_plastic_strain"):
     assert min(values) > 0, (key, values)
     assert max(values) - min(values) <= 0.02 * max(values), (key, values)
 PY
+# The pressure field with the nodal-averaged F-bar is the material's at its
+# Fbar: by the virial theorem of the discrete equilibrium (the internal
+# forces times the positions are the Kirchhoff stress's trace summed over the
+# corners), its volume integral is F_upper H / 3 with H the gap between the
+# punches, up to friction at the punch faces and the Cauchy-Kirchhoff factor
+# 1/J. Measured 0.979 of it; the pressure of the cell's own F (the bug until
+# session 16) gave 1.63.
+/usr/bin/python3 - out <<'PY'
+import csv, glob, sys
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
+directory = sys.argv[1]
+reader = vtk.vtkXMLPUnstructuredGridReader()
+reader.SetFileName(sorted(glob.glob(directory + "/solution_*.pvtu"))[-1])
+reader.Update()
+grid = reader.GetOutput()
+integrate = vtk.vtkIntegrateAttributes()
+integrate.SetInputData(grid)
+integrate.Update()
+pressure_integral = integrate.GetOutput().GetPointData().GetArray("pressure").GetValue(0)
+z = vtk_to_numpy(grid.GetPoints().GetData())[:, 2] + \
+    vtk_to_numpy(grid.GetPointData().GetArray("displacement"))[:, 2]
+force = float(list(csv.DictReader(open(directory + "/statistics.csv")))[-1]["upper_punch_force"])
+ratio = pressure_integral / (force * (z.max() - z.min()) / 3)
+print("integral of the pressure over F_upper H / 3:", ratio)
+assert abs(ratio - 1) < 0.05, ratio
+PY

@@ -82,6 +82,19 @@ namespace densify
              TrilinosWrappers::MPI::Vector                      &residual,
              TrilinosWrappers::SparseMatrix                     *tangent);
 
+    /**
+     * The vertex averages j_a = sum_f V_f j_f / sum_f V_f of the volume
+     * measure (det F at finite strain, 1 + div u at small strain) at
+     * @p solution (which must hold the values of all DoFs), indexed by
+     * global vertex index and complete at the vertices of locally owned
+     * cells. At corner a of cell e the material sees
+     * Fbar = (j_a / j_e)^(1/3) F_e (finite strain) or F_e + (j_a - j_e)/3 I.
+     */
+    std::vector<double>
+    vertex_volume_measures(
+      const TrilinosWrappers::MPI::Vector                &solution,
+      const std::vector<std::shared_ptr<const Material>> &materials) const;
+
   private:
     /// Fixed data of one cell.
     struct Cell
