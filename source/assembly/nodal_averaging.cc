@@ -368,6 +368,19 @@ namespace densify
 
 
 
+  Tensor<2, 3>
+  NodalAveraging::deformation_gradient(
+    const Cell                          &c,
+    const TrilinosWrappers::MPI::Vector &solution)
+  {
+    Tensor<2, 3> F = unit_symmetric_tensor<3>();
+    for (unsigned int i = 0; i < 12; ++i)
+      F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
+    return F;
+  }
+
+
+
   std::vector<double>
   NodalAveraging::vertex_volume_measures(
     const TrilinosWrappers::MPI::Vector                &solution,
@@ -376,13 +389,11 @@ namespace densify
     std::vector<double> averaged(patches.size(), 0.);
     for (const unsigned int e : needed_cells)
       {
-        const Cell  &c = cells[e];
-        Tensor<2, 3> F = unit_symmetric_tensor<3>();
-        for (unsigned int i = 0; i < 12; ++i)
-          F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
-        const double j = materials[c.material]->finite_strain() ?
-                           determinant(F) :
-                           trace(F) - 2.;
+        const Cell        &c = cells[e];
+        const Tensor<2, 3> F = deformation_gradient(c, solution);
+        const double       j = materials[c.material]->finite_strain() ?
+                                 determinant(F) :
+                                 trace(F) - 2.;
         for (unsigned int v = 0; v < 4; ++v)
           averaged[c.vertex[v]] += c.volume * j;
       }
@@ -417,9 +428,7 @@ namespace densify
         const Cell &c      = cells[e];
         CellState  &s      = state[e];
         const bool  finite = materials[c.material]->finite_strain();
-        s.F                = I;
-        for (unsigned int i = 0; i < 12; ++i)
-          s.F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
+        s.F                = deformation_gradient(c, solution);
         if (finite)
           {
             s.j = determinant(s.F);

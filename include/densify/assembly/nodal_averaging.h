@@ -142,6 +142,11 @@ namespace densify
       std::array<Tensor<1, 3>, 12> h;
     };
 
+    /// F = I + Grad u of cell @p c at @p solution (P1: constant in the cell).
+    static Tensor<2, 3>
+    deformation_gradient(const Cell                          &c,
+                         const TrilinosWrappers::MPI::Vector &solution);
+
     std::vector<Cell>  cells;
     std::vector<Patch> patches;
     /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
