@@ -322,16 +322,18 @@ namespace densify
         "Whether the Newton tangent of particle-particle contact includes "
         "the rotation of the master facet's normal and the sliding of the "
         "projection point over the facet (doc/theory.md section 9). true: "
-        "exact for frictionless P1 contact, quadratic Newton where contacts "
-        "slide over facets, but not symmetric (needs Solver/Linear solver = "
-        "gmres-amg, gmres-lu or direct); false: only eps n n^T (symmetric, "
-        "CG works; Newton slows where contacts slide); auto: true for "
-        "frictionless particle contact unless the linear solver is cg-amg. "
-        "With friction the terms are incomplete (the friction traction's "
-        "dependence on the normal is left out) and measured to hurt: the "
-        "seven-sphere layer needed 88 instead of 14 Newton iterations in its "
-        "first step (benchmarks/contact_tangent.sh). The converged answer is "
-        "the same.",
+        "exact for P1 and P2 contact, with or without friction "
+        "(tests/contact_tangent.cc), quadratic Newton where contacts slide "
+        "over facets, but not symmetric (needs Solver/Linear solver = "
+        "gmres-amg, gmres-lu or direct); false: only eps n n^T and the "
+        "friction law's stiffness (symmetric without friction, CG works; "
+        "Newton slows where contacts slide); auto: true for frictionless "
+        "particle contact unless the linear solver is cg-amg. With friction "
+        "it is measured both ways (doc/performance.md): the seven-sphere "
+        "layer needs 185 instead of 278 Newton iterations, but in the dense "
+        "late steps of the paper scene the exact tangent gives Newton steps "
+        "50 times too long and step 201 does not converge, so auto leaves "
+        "it off there. The converged answer is the same.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
