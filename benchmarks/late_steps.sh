@@ -2,20 +2,27 @@
 # Solver levers on later steps of the paper's scene at full fidelity: resumes
 # a checkpoint of prm/single_layer_sn.prm and runs a few steps once per
 # variant (SET tolerances: fixed or adaptive linear tolerance, Newton
-# tolerance; SET line-search: Solver/Line search residual or energy), printing
+# tolerance; SET line-search: Solver/Line search residual or energy; SET
+# geometric-tangent: Contact/Geometric tangent false or true), printing
 # wall time, factorizations, GMRES solves with old factors, Newton iterations
 # per step and the final forces, so that time and accuracy can be compared.
 # Usage (from the source root):
-#   bash benchmarks/late_steps.sh RUN_DIR [N_STEPS [SET]]
+#   bash benchmarks/late_steps.sh RUN_DIR [N_STEPS [SET [RANKS]]]
 # RUN_DIR: the Output/Directory of a run of prm/single_layer_sn.prm with a
 # checkpoint (Output/Checkpoint interval); N_STEPS after it (default 4); SET
-# tolerances (default) or line-search.
-# Needs build/densify; 1 rank; run it alone on the machine.
+# tolerances (default), line-search or geometric-tangent; RANKS: MPI ranks
+# (default 1; the checkpoint's number of ranks).
+# Needs build/densify; run it alone on the machine.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 run=${1:?usage: bash benchmarks/late_steps.sh RUN_DIR [N_STEPS [SET]]}
 n=${2:-4}
 set_name=${3:-tolerances}
+ranks=${4:-1}
+launch=()
+if [ "$ranks" -gt 1 ]; then
+  launch=(mpirun -np "$ranks")
+fi
 info="$run/checkpoint/info.txt"
 [ -f "$info" ] || { echo "no checkpoint in $run (expected $info)"; exit 2; }
 first=$(awk '{print $3}' "$info")
@@ -28,7 +35,7 @@ variant() {
   mkdir -p "$dir"
   cp -r "$run/checkpoint" "$run/statistics.csv" "$dir/"
   local rc=0
-  /usr/bin/time -f "%e %M" -o "$dir.time" "$root/build/densify" \
+  /usr/bin/time -f "%e %M" -o "$dir.time" "${launch[@]}" "$root/build/densify" \
     "$root/prm/single_layer_sn.prm" --set "Output/Directory=$dir" \
     --set "Output/Checkpoint interval=0" --set "Output/Interval=0" \
     --resume --stop-after "$last" "$@" > "$dir.log" 2>&1 || rc=$?
@@ -59,8 +66,12 @@ case $set_name in
     variant "line-search-residual" --set "Solver/Line search=residual"
     variant "line-search-energy" --set "Solver/Line search=energy"
     ;;
+  geometric-tangent)
+    variant "geometric-tangent-false" --set "Contact/Geometric tangent=false"
+    variant "geometric-tangent-true" --set "Contact/Geometric tangent=true"
+    ;;
   *)
-    echo "unknown SET $set_name (tolerances or line-search)"
+    echo "unknown SET $set_name (tolerances, line-search or geometric-tangent)"
     exit 2
     ;;
 esac
