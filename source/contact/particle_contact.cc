@@ -69,96 +69,6 @@ namespace densify
       return {{1 - v - w, v, w}};
     }
     /**
-     * How the friction traction t at a contact point depends on the
-     * tangential slip s = P delta (P = I - n n) and the pressure p, for
-     * add_geometric_tangent(): dt = dt_ds ds + dt_ds_committed dP t_c
-     * + dt_dp dp.
-     */
-    struct FrictionTerms
-    {
-      /// Coulomb (the trial P t_c - eps_t s) or arctangent (t of s alone).
-      bool coulomb = true;
-      /// Derivative of t by s (a 3D s: also its part along n).
-      Tensor<2, 3> dt_ds;
-      /// Derivative of t by the projected committed traction P t_c.
-      Tensor<2, 3> dt_ds_committed;
-      /// Derivative of t by p (t/p where slipping and consistent, else 0).
-      Tensor<1, 3> dt_dp;
-      /// The committed traction t_c.
-      Tensor<1, 3> committed;
-      /// The relative displacement delta since the committed state.
-      Tensor<1, 3> delta;
-      /// Gradient of the master's displacement increment by the master
-      /// cell's reference coordinates at the projection.
-      Tensor<2, 3> grad_delta_m;
-    };
-
-
-
-    /**
-     * The derivatives of the friction traction of evaluate_contact_law()
-     * (response @p r at pressure @p p > 0, normal @p n, committed traction
-     * @p committed, relative displacement @p delta, stick penalty @p eps_t)
-     * that add_geometric_tangent() needs.
-     */
-    FrictionTerms
-    friction_terms(const ContactResponse &r,
-                   const Tensor<1, 3>    &n,
-                   const Tensor<1, 3>    &committed,
-                   const Tensor<1, 3>    &delta,
-                   const double           eps_t,
-                   const FrictionLaw     &law)
-    {
-      FrictionTerms      terms;
-      const double       p = r.pressure;
-      const Tensor<2, 3> I = unit_symmetric_tensor<3>();
-      const Tensor<2, 3> P = I - outer_product(n, n);
-      const Tensor<1, 3> s = P * delta;
-      terms.committed      = committed;
-      terms.delta          = delta;
-      terms.coulomb        = law.model == FrictionModel::coulomb;
-      if (terms.coulomb)
-        {
-          // t = trial (stick) or mu p trial / |trial| (slip), with
-          // trial = P t_c - eps_t s
-          Tensor<2, 3> A = I;
-          if (r.status == ContactStatus::slip)
-            {
-              const Tensor<1, 3> trial = P * committed - eps_t * s;
-              const double       norm  = trial.norm();
-              const Tensor<1, 3> t_hat = trial / norm;
-              A                        = law.mu * p / norm *
-                  (law.consistent ? I - outer_product(t_hat, t_hat) : I);
-            }
-          terms.dt_ds_committed = A;
-          terms.dt_ds           = -eps_t * A;
-        }
-      else
-        {
-          // t = -c atan(|s| / delta) s / |s|, c = 2 mu p / pi
-          const double c     = law.mu * p * 2. / numbers::PI;
-          const double slip  = s.norm();
-          const double scale = law.regularisation;
-          if (slip <= 1e-14 * scale)
-            terms.dt_ds = -c / scale * I;
-          else
-            {
-              const Tensor<1, 3> s_hat = s / slip;
-              const double       a     = std::atan(slip / scale);
-              const Tensor<2, 3> ss    = outer_product(s_hat, s_hat);
-              terms.dt_ds =
-                -c * (1. / scale / (1. + (slip / scale) * (slip / scale)) * ss +
-                      a / slip * (I - ss));
-            }
-        }
-      if (law.consistent && r.status == ContactStatus::slip)
-        terms.dt_dp = r.traction / p;
-      return terms;
-    }
-
-
-
-    /**
      * Add to @p pair_matrix (slave DoFs, then master DoFs) the tangent terms
      * of the traction @p T = p n + t that come from the motion of the master
      * facet with corners @p c (current positions): the rotation of the
@@ -181,7 +91,9 @@ namespace densify
      * With friction (@p friction not null), the tangential traction t
      * follows the same motion: the tangent plane P = I - n n turns with n,
      * and the slip increment delta = du_s - du_m(xi) changes with the
-     * projection point by -(grad_xi du_m) dxi (FrictionTerms).
+     * projection point by -(@p grad_delta_m) dxi, with @p grad_delta_m the
+     * gradient of the master's displacement increment by the master cell's
+     * reference coordinates (FrictionTerms, friction_traction_change()).
      */
     void
     add_geometric_tangent(const std::array<Point<3>, 3>   &c,
@@ -201,6 +113,7 @@ namespace densify
                           const Tensor<2, 3>              &dx_m_dxi,
                           const double                     factor,
                           const FrictionTerms             *friction,
+                          const Tensor<2, 3>              &grad_delta_m,
                           FullMatrix<double>              &pair_matrix)
     {
       const unsigned int n_dofs = component.size();
@@ -253,18 +166,8 @@ namespace densify
       std::vector<Tensor<1, 3>> dt(friction != nullptr ? 2 * n_dofs : 0);
       if (friction != nullptr)
         for (unsigned int j = 0; j < 2 * n_dofs; ++j)
-          {
-            // dP v = -(dn (n . v) + n (dn . v))
-            const auto dP = [&](const Tensor<1, 3> &v) {
-              return -(dn[j] * (n * v) + n * (dn[j] * v));
-            };
-            const Tensor<1, 3> ddelta = -(friction->grad_delta_m * dxi[j]);
-            const Tensor<1, 3> ds =
-              dP(friction->delta) + (ddelta - (ddelta * n) * n);
-            dt[j] = friction->dt_ds * ds - friction->dt_dp * eps * dg[j];
-            if (friction->coulomb)
-              dt[j] += friction->dt_ds_committed * dP(friction->committed);
-          }
+          dt[j] = friction_traction_change(
+            *friction, n, dn[j], -(grad_delta_m * dxi[j]), -eps * dg[j]);
       for (unsigned int i = 0; i < 2 * n_dofs; ++i)
         for (unsigned int j = 0; j < 2 * n_dofs; ++j)
           {
@@ -848,20 +751,23 @@ namespace densify
                             const bool sliding = (off - (off * n) * n).norm() <=
                                                  1e-8 * (c[1] - c[0]).norm();
                             FrictionTerms terms;
+                            Tensor<2, 3>  grad_delta_m;
                             if (friction_on)
-                              terms =
-                                friction_terms(r,
-                                               n,
-                                               committed_traction[idx],
-                                               delta,
-                                               friction.tangential_ratio * eps,
-                                               friction);
-                            if (friction_on)
-                              for (unsigned int i = 0; i < n_dofs; ++i)
-                                for (unsigned int kk = 0; kk < 3; ++kk)
-                                  terms.grad_delta_m[component[i]][kk] +=
-                                    (master_u(i) - master_old(i)) *
-                                    master_grad[i][kk];
+                              {
+                                terms =
+                                  friction_terms(r,
+                                                 n,
+                                                 committed_traction[idx],
+                                                 delta,
+                                                 friction.tangential_ratio *
+                                                   eps,
+                                                 friction);
+                                for (unsigned int i = 0; i < n_dofs; ++i)
+                                  for (unsigned int kk = 0; kk < 3; ++kk)
+                                    grad_delta_m[component[i]][kk] +=
+                                      (master_u(i) - master_old(i)) *
+                                      master_grad[i][kk];
+                              }
                             add_geometric_tangent(c,
                                                   n,
                                                   off,
@@ -880,6 +786,7 @@ namespace densify
                                                   weight * JxW,
                                                   friction_on ? &terms :
                                                                 nullptr,
+                                                  grad_delta_m,
                                                   pair_matrix);
                           }
                         out.matrix->add(pair_dofs, pair_matrix);

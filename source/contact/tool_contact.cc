@@ -305,6 +305,30 @@ namespace densify
                           p * curvature *
                           (horizontal - (n * phi[i]) * (n * phi[j])) * JxW;
                       }
+                if (curvature > 0 && rough && friction_laws[t].consistent)
+                  {
+                    // the friction traction turns with the normal too:
+                    // dn = -(1/r) (I_h - n n) dx (doc/theory.md section 8);
+                    // not symmetric, so only with the consistent tangent
+                    const FrictionTerms terms =
+                      friction_terms(r,
+                                     n,
+                                     committed_traction[idx],
+                                     delta,
+                                     friction_laws[t].tangential_ratio * eps,
+                                     friction_laws[t]);
+                    for (unsigned int j = 0; j < n_dofs; ++j)
+                      {
+                        Tensor<1, 3> dn;
+                        dn[0] = phi[j][0];
+                        dn[1] = phi[j][1];
+                        dn    = -curvature * (dn - (n * dn) * n);
+                        const Tensor<1, 3> dt = friction_traction_change(
+                          terms, n, dn, Tensor<1, 3>(), 0.);
+                        for (unsigned int i = 0; i < n_dofs; ++i)
+                          cell_matrix(i, j) -= (phi[i] * dt) * JxW;
+                      }
+                  }
               }
             if (post_face)
               for (unsigned int i = 0; i < post_indices.size(); ++i)

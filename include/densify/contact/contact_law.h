@@ -142,4 +142,120 @@ namespace densify
       r.stiffness += eps / r.pressure * outer_product(r.traction, n);
     return r;
   }
+
+
+
+  /**
+   * How the friction traction t at a contact point depends on the
+   * tangential slip s = P delta (P = I - n n) and the pressure p, for the
+   * geometric tangent terms: dt = dt_ds ds + dt_ds_committed dP t_c
+   * + dt_dp dp.
+   */
+  struct FrictionTerms
+  {
+    /// Coulomb (the trial P t_c - eps_t s) or arctangent (t of s alone).
+    bool coulomb = true;
+    /// Derivative of t by s (a 3D s: also its part along n).
+    Tensor<2, 3> dt_ds;
+    /// Derivative of t by the projected committed traction P t_c.
+    Tensor<2, 3> dt_ds_committed;
+    /// Derivative of t by p (t/p where slipping and consistent, else 0).
+    Tensor<1, 3> dt_dp;
+    /// The committed traction t_c.
+    Tensor<1, 3> committed;
+    /// The relative displacement delta since the committed state.
+    Tensor<1, 3> delta;
+  };
+
+
+
+  /**
+   * The derivatives of the friction traction of evaluate_contact_law()
+   * (response @p r with a pressure > 0, normal @p n, committed traction
+   * @p committed, relative displacement @p delta, stick penalty @p eps_t,
+   * law @p law) that friction_traction_change() needs.
+   */
+  inline FrictionTerms
+  friction_terms(const ContactResponse &r,
+                 const Tensor<1, 3>    &n,
+                 const Tensor<1, 3>    &committed,
+                 const Tensor<1, 3>    &delta,
+                 const double           eps_t,
+                 const FrictionLaw     &law)
+  {
+    FrictionTerms      terms;
+    const double       p = r.pressure;
+    const Tensor<2, 3> I = unit_symmetric_tensor<3>();
+    const Tensor<2, 3> P = I - outer_product(n, n);
+    const Tensor<1, 3> s = P * delta;
+    terms.committed      = committed;
+    terms.delta          = delta;
+    terms.coulomb        = law.model == FrictionModel::coulomb;
+    if (terms.coulomb)
+      {
+        // t = trial (stick) or mu p trial / |trial| (slip), with
+        // trial = P t_c - eps_t s
+        Tensor<2, 3> A = I;
+        if (r.status == ContactStatus::slip)
+          {
+            const Tensor<1, 3> trial = P * committed - eps_t * s;
+            const double       norm  = trial.norm();
+            const Tensor<1, 3> t_hat = trial / norm;
+            A                        = law.mu * p / norm *
+                (law.consistent ? I - outer_product(t_hat, t_hat) : I);
+          }
+        terms.dt_ds_committed = A;
+        terms.dt_ds           = -eps_t * A;
+      }
+    else
+      {
+        // t = -c atan(|s| / delta) s / |s|, c = 2 mu p / pi
+        const double c     = law.mu * p * 2. / numbers::PI;
+        const double slip  = s.norm();
+        const double scale = law.regularisation;
+        if (slip <= 1e-14 * scale)
+          terms.dt_ds = -c / scale * I;
+        else
+          {
+            const Tensor<1, 3> s_hat = s / slip;
+            const double       a     = std::atan(slip / scale);
+            const Tensor<2, 3> ss    = outer_product(s_hat, s_hat);
+            terms.dt_ds =
+              -c * (1. / scale / (1. + (slip / scale) * (slip / scale)) * ss +
+                    a / slip * (I - ss));
+          }
+      }
+    if (law.consistent && r.status == ContactStatus::slip)
+      terms.dt_dp = r.traction / p;
+    return terms;
+  }
+
+
+
+  /**
+   * The change of the friction traction described by @p terms when the
+   * normal @p n turns by @p dn, the relative displacement changes by
+   * @p ddelta beyond the motion of the two points themselves (which the
+   * law's stiffness covers; for particle contact the sliding of the master
+   * point) and the pressure by @p dp beyond -eps n . (that motion). With
+   * P = I - n n: dP v = -(dn (n . v) + n (dn . v)),
+   * ds = dP delta + P ddelta, dt = dt_ds ds + dt_ds_committed dP t_c
+   * + dt_dp dp (doc/theory.md section 9).
+   */
+  inline Tensor<1, 3>
+  friction_traction_change(const FrictionTerms &terms,
+                           const Tensor<1, 3>  &n,
+                           const Tensor<1, 3>  &dn,
+                           const Tensor<1, 3>  &ddelta,
+                           const double         dp)
+  {
+    const auto dP = [&](const Tensor<1, 3> &v) {
+      return -(dn * (n * v) + n * (dn * v));
+    };
+    const Tensor<1, 3> ds = dP(terms.delta) + (ddelta - (ddelta * n) * n);
+    Tensor<1, 3>       dt = terms.dt_ds * ds + terms.dt_dp * dp;
+    if (terms.coulomb)
+      dt += terms.dt_ds_committed * dP(terms.committed);
+    return dt;
+  }
 } // namespace densify

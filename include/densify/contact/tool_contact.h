@@ -66,7 +66,9 @@ namespace densify
    * return map or arctangent law) with its history committed by commit().
    * Its normal tangent eps n n^T (plus p/r times the tangential projector
    * for the concave die wall) and the symmetrised friction tangent are
-   * symmetric positive semi-definite, so CG stays usable. Only enabled tools
+   * symmetric positive semi-definite, so CG stays usable; the consistent
+   * friction tangent (FrictionLaw::consistent) is exact, including how the
+   * friction traction turns with the die wall's normal, and not symmetric. Only enabled tools
    * are stored and searched; a tool with mu = 0 runs no friction code. Works
    * on the locally owned cells of a parallel::shared triangulation.
    */
