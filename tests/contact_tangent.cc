@@ -30,28 +30,16 @@
 #include <densify/contact/particle_contact.h>
 #include <densify/simulator.h>
 
+#include "tangent_check.h"
 #include "test_utilities.h"
 
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <random>
 
 namespace
 {
   using namespace densify;
-
-  /// A fully ghosted copy of @p owned.
-  TrilinosWrappers::MPI::Vector
-  ghosted(const DoFHandler<3>                 &dof_handler,
-          const TrilinosWrappers::MPI::Vector &owned)
-  {
-    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
-                                      complete_index_set(dof_handler.n_dofs()),
-                                      MPI_COMM_WORLD);
-    all = owned;
-    return all;
-  }
 
   /**
    * The largest relative difference of the contact tangent to finite
@@ -101,7 +89,8 @@ namespace
       return v;
     };
     const TrilinosWrappers::MPI::Vector u_owned = state(0.04, 0.004);
-    const TrilinosWrappers::MPI::Vector u       = ghosted(dof_handler, u_owned);
+    const TrilinosWrappers::MPI::Vector u =
+      testing::ghosted(dof_handler, u_owned);
 
     TrilinosWrappers::SparsityPattern pattern(owned_dofs, MPI_COMM_WORLD);
     DoFTools::make_sparsity_pattern(dof_handler, pattern);
@@ -122,40 +111,17 @@ namespace
       contact.reset_projections();
       contact.update_projections(mapping, u);
 
-      TrilinosWrappers::SparseMatrix matrix(pattern);
-      TrilinosWrappers::MPI::Vector  residual(owned_dofs, MPI_COMM_WORLD),
-        plus(residual), minus(residual), direction(residual), Kv(residual);
-      const ParticleContactResult r =
-        contact.assemble(mapping, u, residual, &matrix);
-      matrix.compress(VectorOperation::add);
-
-      std::mt19937                           random(42);
-      std::uniform_real_distribution<double> uniform(-1., 1.);
-      double                                 worst = 0;
-      for (const double h : {1e-6, 1e-7})
-        for (unsigned int trial = 0; trial < 3; ++trial)
-          {
-            for (const auto i : owned_dofs)
-              direction(i) = uniform(random);
-            direction.compress(VectorOperation::insert);
-            matrix.vmult(Kv, direction);
-            for (const double sign : {1., -1.})
-              {
-                TrilinosWrappers::MPI::Vector moved = u_owned;
-                moved.add(sign * h, direction);
-                TrilinosWrappers::MPI::Vector &target = sign > 0 ? plus : minus;
-                target                                = 0;
-                contact.assemble(mapping,
-                                 ghosted(dof_handler, moved),
-                                 target,
-                                 nullptr);
-                target.compress(VectorOperation::add);
-              }
-            plus -= minus;
-            plus /= 2 * h;
-            plus -= Kv;
-            worst = std::max(worst, plus.l2_norm() / Kv.l2_norm());
-          }
+      ParticleContactResult r;
+      const double          worst = testing::tangent_error(
+        dof_handler,
+        pattern,
+        u_owned,
+        [&](const TrilinosWrappers::MPI::Vector &solution,
+            TrilinosWrappers::MPI::Vector       &residual,
+            TrilinosWrappers::SparseMatrix      *matrix) {
+          return contact.assemble(mapping, solution, residual, matrix);
+        },
+        r);
       return std::make_pair(worst, r);
     };
     const auto report = [&](const std::string           &what,
@@ -195,9 +161,9 @@ namespace
           if (model == FrictionModel::arctangent && back < 0.01)
             continue;
           const TrilinosWrappers::MPI::Vector committed =
-            ghosted(dof_handler, state(0.04 - back, 0.0032));
+            testing::ghosted(dof_handler, state(0.04 - back, 0.0032));
           const TrilinosWrappers::MPI::Vector before =
-            ghosted(dof_handler, state(0.04 - back - 0.001, 0.0032));
+            testing::ghosted(dof_handler, state(0.04 - back - 0.001, 0.0032));
           for (const bool geometric : {true, false})
             {
               FrictionLaw law;

@@ -25,28 +25,16 @@
 #include <densify/contact/tool_contact.h>
 #include <densify/simulator.h>
 
+#include "tangent_check.h"
 #include "test_utilities.h"
 
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <random>
 
 namespace
 {
   using namespace densify;
-
-  /// A fully ghosted copy of @p owned.
-  TrilinosWrappers::MPI::Vector
-  ghosted(const DoFHandler<3>                 &dof_handler,
-          const TrilinosWrappers::MPI::Vector &owned)
-  {
-    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
-                                      complete_index_set(dof_handler.n_dofs()),
-                                      MPI_COMM_WORLD);
-    all = owned;
-    return all;
-  }
 
   /**
    * The largest relative difference of the tool contact tangent to finite
@@ -100,7 +88,6 @@ namespace
     };
     const Tensor<1, 3>                  shift({0.05, 0.01, -0.04});
     const TrilinosWrappers::MPI::Vector u_owned = state(shift, 0.004);
-    const TrilinosWrappers::MPI::Vector u       = ghosted(dof_handler, u_owned);
 
     TrilinosWrappers::SparsityPattern pattern(owned_dofs, MPI_COMM_WORLD);
     DoFTools::make_sparsity_pattern(dof_handler, pattern);
@@ -114,41 +101,20 @@ namespace
     tools[1].kind     = ToolKind::die_wall;
     tools[1].position = 1.27;
 
-    // the largest relative difference |K v - FD| / |K v| of @p contact at u
+    // the largest relative difference |K v - FD| / |K v| of @p contact at
+    // u_owned
     const auto fd_error = [&](const ToolContact &contact) {
-      TrilinosWrappers::SparseMatrix matrix(pattern);
-      TrilinosWrappers::MPI::Vector  residual(owned_dofs, MPI_COMM_WORLD),
-        plus(residual), minus(residual), direction(residual), Kv(residual);
-      const ToolContactResult r =
-        contact.assemble(mapping, u, residual, &matrix);
-      matrix.compress(VectorOperation::add);
-      std::mt19937                           random(42);
-      std::uniform_real_distribution<double> uniform(-1., 1.);
-      double                                 worst = 0;
-      for (const double h : {1e-6, 1e-7})
-        for (unsigned int trial = 0; trial < 3; ++trial)
-          {
-            for (const auto i : owned_dofs)
-              direction(i) = uniform(random);
-            direction.compress(VectorOperation::insert);
-            matrix.vmult(Kv, direction);
-            for (const double sign : {1., -1.})
-              {
-                TrilinosWrappers::MPI::Vector moved = u_owned;
-                moved.add(sign * h, direction);
-                TrilinosWrappers::MPI::Vector &target = sign > 0 ? plus : minus;
-                target                                = 0;
-                contact.assemble(mapping,
-                                 ghosted(dof_handler, moved),
-                                 target,
-                                 nullptr);
-                target.compress(VectorOperation::add);
-              }
-            plus -= minus;
-            plus /= 2 * h;
-            plus -= Kv;
-            worst = std::max(worst, plus.l2_norm() / Kv.l2_norm());
-          }
+      ToolContactResult r;
+      const double      worst = testing::tangent_error(
+        dof_handler,
+        pattern,
+        u_owned,
+        [&](const TrilinosWrappers::MPI::Vector &solution,
+            TrilinosWrappers::MPI::Vector       &residual,
+            TrilinosWrappers::SparseMatrix      *matrix) {
+          return contact.assemble(mapping, solution, residual, matrix);
+        },
+        r);
       return std::make_pair(worst, r);
     };
     const auto report = [&](const std::string       &what,
@@ -183,9 +149,10 @@ namespace
           const Tensor<1, 3> along(
             {0., 1. / std::sqrt(2.), -1. / std::sqrt(2.)});
           const TrilinosWrappers::MPI::Vector committed =
-            ghosted(dof_handler, state(shift - back * along, 0.0032));
+            testing::ghosted(dof_handler, state(shift - back * along, 0.0032));
           const TrilinosWrappers::MPI::Vector before =
-            ghosted(dof_handler, state(shift - (back + 0.001) * along, 0.0032));
+            testing::ghosted(dof_handler,
+                             state(shift - (back + 0.001) * along, 0.0032));
           FrictionLaw law;
           law.mu             = 0.2;
           law.model          = model;
