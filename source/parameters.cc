@@ -332,7 +332,7 @@ namespace densify
         "it is measured both ways (doc/performance.md): the seven-sphere "
         "layer needs 185 instead of 278 Newton iterations, but in the dense "
         "late steps of the paper scene the exact tangent gives Newton steps "
-        "50 times too long and step 201 does not converge, so auto leaves "
+        "about 45 times too long and step 201 does not converge, so auto leaves "
         "it off there. The converged answer is the same.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(

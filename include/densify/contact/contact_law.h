@@ -153,11 +153,10 @@ namespace densify
    */
   struct FrictionTerms
   {
-    /// Coulomb (the trial P t_c - eps_t s) or arctangent (t of s alone).
-    bool coulomb = true;
     /// Derivative of t by s (a 3D s: also its part along n).
     Tensor<2, 3> dt_ds;
-    /// Derivative of t by the projected committed traction P t_c.
+    /// Derivative of t by the projected committed traction P t_c (Coulomb's
+    /// trial P t_c - eps_t s; zero for the arctangent law).
     Tensor<2, 3> dt_ds_committed;
     /// Derivative of t by p (t/p where slipping and consistent, else 0).
     Tensor<1, 3> dt_dp;
@@ -190,8 +189,7 @@ namespace densify
     const Tensor<1, 3> s = P * delta;
     terms.committed      = committed;
     terms.delta          = delta;
-    terms.coulomb        = law.model == FrictionModel::coulomb;
-    if (terms.coulomb)
+    if (law.model == FrictionModel::coulomb)
       {
         // t = trial (stick) or mu p trial / |trial| (slip), with
         // trial = P t_c - eps_t s
@@ -253,9 +251,7 @@ namespace densify
       return -(dn * (n * v) + n * (dn * v));
     };
     const Tensor<1, 3> ds = dP(terms.delta) + (ddelta - (ddelta * n) * n);
-    Tensor<1, 3>       dt = terms.dt_ds * ds + terms.dt_dp * dp;
-    if (terms.coulomb)
-      dt += terms.dt_ds_committed * dP(terms.committed);
-    return dt;
+    return terms.dt_ds * ds + terms.dt_ds_committed * dP(terms.committed) +
+           terms.dt_dp * dp;
   }
 } // namespace densify

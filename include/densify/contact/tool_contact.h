@@ -68,9 +68,9 @@ namespace densify
    * for the concave die wall) and the symmetrised friction tangent are
    * symmetric positive semi-definite, so CG stays usable; the consistent
    * friction tangent (FrictionLaw::consistent) is exact, including how the
-   * friction traction turns with the die wall's normal, and not symmetric. Only enabled tools
-   * are stored and searched; a tool with mu = 0 runs no friction code. Works
-   * on the locally owned cells of a parallel::shared triangulation.
+   * friction traction turns with the die wall's normal, and not symmetric. Only
+   * enabled tools are stored and searched; a tool with mu = 0 runs no friction
+   * code. Works on the locally owned cells of a parallel::shared triangulation.
    */
   class ToolContact
   {
