@@ -36,7 +36,7 @@ PY
 #   checked to 1 %. The graphics' rule until session 18 (deal.II 9.4's
 #   six-point QGaussSimplex, whose points' nearest corners carry unequal
 #   weights) gave 0.9575; the pressure of the cell's own F (the bug until
-#   session 16) gave far more.
+#   session 16) gave 1.63 with friction.
 # - With friction 0.2 at the punches: measured 1.0236 (friction adds 1.8 %);
 #   checked to 5 %.
 virial_ratio() {
