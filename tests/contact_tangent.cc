@@ -111,18 +111,8 @@ namespace
       contact.reset_projections();
       contact.update_projections(mapping, u);
 
-      ParticleContactResult r;
-      const double          worst = testing::tangent_error(
-        dof_handler,
-        pattern,
-        u_owned,
-        [&](const TrilinosWrappers::MPI::Vector &solution,
-            TrilinosWrappers::MPI::Vector       &residual,
-            TrilinosWrappers::SparseMatrix      *matrix) {
-          return contact.assemble(mapping, solution, residual, matrix);
-        },
-        r);
-      return std::make_pair(worst, r);
+      return testing::contact_tangent_error(
+        dof_handler, pattern, u_owned, mapping, contact);
     };
     const auto report = [&](const std::string           &what,
                             const bool                   geometric,

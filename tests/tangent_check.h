@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <random>
+#include <utility>
 
 namespace densify
 {
@@ -77,6 +78,36 @@ namespace densify
             worst = std::max(worst, plus.l2_norm() / Kv.l2_norm());
           }
       return worst;
+    }
+
+    /**
+     * tangent_error() of a contact term whose assemble(mapping, solution,
+     * residual, matrix or nullptr) adds its residual and tangent: the
+     * largest relative difference and the term's result at @p u_owned.
+     */
+    template <typename Contact, typename Mapping>
+    auto
+    contact_tangent_error(
+      const dealii::DoFHandler<3>                     &dof_handler,
+      const dealii::TrilinosWrappers::SparsityPattern &pattern,
+      const dealii::TrilinosWrappers::MPI::Vector     &u_owned,
+      const Mapping                                   &mapping,
+      Contact                                         &contact)
+    {
+      using dealii::TrilinosWrappers::MPI::Vector;
+      decltype(contact.assemble(
+        mapping, u_owned, std::declval<Vector &>(), nullptr)) result;
+      const double worst = tangent_error(
+        dof_handler,
+        pattern,
+        u_owned,
+        [&](const Vector                           &solution,
+            Vector                                 &residual,
+            dealii::TrilinosWrappers::SparseMatrix *matrix) {
+          return contact.assemble(mapping, solution, residual, matrix);
+        },
+        result);
+      return std::make_pair(worst, result);
     }
   } // namespace testing
 } // namespace densify

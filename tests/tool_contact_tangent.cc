@@ -104,18 +104,8 @@ namespace
     // the largest relative difference |K v - FD| / |K v| of @p contact at
     // u_owned
     const auto fd_error = [&](const ToolContact &contact) {
-      ToolContactResult r;
-      const double      worst = testing::tangent_error(
-        dof_handler,
-        pattern,
-        u_owned,
-        [&](const TrilinosWrappers::MPI::Vector &solution,
-            TrilinosWrappers::MPI::Vector       &residual,
-            TrilinosWrappers::SparseMatrix      *matrix) {
-          return contact.assemble(mapping, solution, residual, matrix);
-        },
-        r);
-      return std::make_pair(worst, r);
+      return testing::contact_tangent_error(
+        dof_handler, pattern, u_owned, mapping, contact);
     };
     const auto report = [&](const std::string       &what,
                             const double             worst,

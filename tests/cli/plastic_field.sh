@@ -7,13 +7,21 @@
 # strain on each cell and none on the last sphere.
 set -eu
 cd "$WORK_DIR"
-rm -rf out
-"$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Output/Directory=out" \
-  --set "Material/Model=J2 plasticity" --set "Material/Finite strain=true" \
-  --set "Tools/Upper punch/Displacement history=0:0, 1:0.06" \
-  --set "Mesh/Element size=0.5" --set "Mesh/Refined element size=0.2" \
-  --set "Solver/Linear solver=direct" --set "Time stepping/Number of steps=2" > run.txt
-grep -q "nodal-averaged F-bar" run.txt
+# the three spheres pressed in two steps into directory $1 (log $1.txt),
+# further --set options after it
+run_scene() {
+  local dir=$1
+  shift
+  rm -rf "$dir"
+  "$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Output/Directory=$dir" \
+    --set "Material/Model=J2 plasticity" --set "Material/Finite strain=true" \
+    --set "Tools/Upper punch/Displacement history=0:0, 1:0.06" \
+    --set "Mesh/Element size=0.5" --set "Mesh/Refined element size=0.2" \
+    --set "Solver/Linear solver=direct" --set "Time stepping/Number of steps=2" \
+    "$@" > "$dir.txt"
+}
+run_scene out
+grep -q "nodal-averaged F-bar" out.txt
 /usr/bin/python3 "$SOURCE_DIR/scripts/postprocess/particle_table.py" out --step -1 --out table
 /usr/bin/python3 - table/particle_table_00002.csv <<'PY'
 import csv, sys
@@ -62,11 +70,6 @@ assert abs(ratio - 1) < tolerance, (ratio, tolerance)
 PY
 }
 virial_ratio out 0.05
-rm -rf frictionless
-"$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Output/Directory=frictionless" \
-  --set "Material/Model=J2 plasticity" --set "Material/Finite strain=true" \
-  --set "Tools/Upper punch/Displacement history=0:0, 1:0.06" \
-  --set "Mesh/Element size=0.5" --set "Mesh/Refined element size=0.2" \
-  --set "Solver/Linear solver=direct" --set "Time stepping/Number of steps=2" \
-  --set "Contact/Friction coefficient=0" --set "Contact/Hold poles on axis=vertical" > frictionless.txt
+run_scene frictionless --set "Contact/Friction coefficient=0" \
+  --set "Contact/Hold poles on axis=vertical"
 virial_ratio frictionless 0.01
