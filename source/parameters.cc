@@ -192,6 +192,13 @@ namespace densify
                         "Poisson's ratio of the material 'custom' "
                         "(dimensionless, -1 < nu < 0.5).",
                         Patterns::Double(-0.999, 0.499));
+      prm.add_parameter(
+        "Density",
+        material.density,
+        "Mass density of the material 'custom', in t/mm^3 (7.29e-9 is tin); "
+        "used by Solver/Method = explicit only. The presets carry their own "
+        "values (doc/materials.md).",
+        Patterns::Double(1e-15, 1e-3));
     }
     prm.leave_subsection();
 
@@ -397,6 +404,16 @@ namespace densify
     prm.enter_subsection("Solver");
     {
       prm.add_parameter(
+        "Method",
+        solver.method,
+        "implicit: quasi-static equilibrium by Newton's method at every load "
+        "step (the entries below). explicit: central-difference dynamics "
+        "with a lumped mass, mass scaling and penalty contact over the same "
+        "element, material and contact law, no linear solve (subsection "
+        "Explicit; doc/theory.md); the load steps become the stations where "
+        "statistics, graphics and checkpoints are written.",
+        Patterns::Selection("implicit|explicit"));
+      prm.add_parameter(
         "Linear solver",
         solver.linear_solver,
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
@@ -481,6 +498,65 @@ namespace densify
         "factorizations; see doc/performance.md). No effect on one rank or "
         "with the AMG solvers, which repeat exactly anyway.",
         Patterns::Bool());
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Explicit");
+    {
+      prm.add_parameter(
+        "Loading time",
+        explicit_dynamics.loading_time,
+        "Physical duration of the whole load history (Time stepping/End "
+        "time), in s (> 0). With mass scaling it only sets the units of the "
+        "scaled mass; with Mass scaling = none it sets the punch speed, so "
+        "that inertia enters (high-speed compaction).",
+        Patterns::Double(1e-12));
+      prm.add_parameter(
+        "Number of steps",
+        explicit_dynamics.n_steps,
+        "Explicit time steps over the whole load history when mass scaling "
+        "sets the step (>= 10). More steps: a slower load against the "
+        "particles' vibrations, so less kinetic energy and a result closer "
+        "to the quasi-static one, at proportional cost.",
+        Patterns::Integer(10));
+      prm.add_parameter(
+        "Mass scaling",
+        explicit_dynamics.mass_scaling,
+        "selective: the density of each element whose stable time step is "
+        "below the target step (Loading time / Number of steps) is raised "
+        "until it reaches it; uniform: every element's density by the one "
+        "factor the smallest element needs; none: physical densities, the "
+        "stable step sets the number of steps. The added mass is reported.",
+        Patterns::Selection("selective|uniform|none"));
+      prm.add_parameter(
+        "Time step safety",
+        explicit_dynamics.safety,
+        "Time step as a fraction of the stable step computed from the "
+        "elements and the contact springs (0 < s <= 2; above 1 the run is "
+        "expected to go unstable and is stopped with a message).",
+        Patterns::Double(1e-3, 2.));
+      prm.add_parameter(
+        "Ramp fraction",
+        explicit_dynamics.ramp_fraction,
+        "Fraction of the loading time over which the punch velocity rises "
+        "from zero along a smooth step (0 <= f < 1; 0: the punch starts at "
+        "full speed).",
+        Patterns::Double(0., 0.999));
+      prm.add_parameter(
+        "Damping ratio",
+        explicit_dynamics.damping_ratio,
+        "Mass-proportional damping, as a fraction of the critical damping of "
+        "a particle's lowest compression mode (0 <= z <= 1; 0: none). Its "
+        "work is reported in statistics.csv.",
+        Patterns::Double(0., 1.));
+      prm.add_parameter(
+        "Contact stiffness",
+        explicit_dynamics.contact_stiffness,
+        "Sets the contact penalty of explicit runs: the squared frequency of "
+        "the stiffest contact spring as this fraction of the elements' "
+        "largest one (> 0); the stable step includes the springs. Larger: "
+        "less penetration, smaller time steps.",
+        Patterns::Double(1e-6, 100.));
     }
     prm.leave_subsection();
 
@@ -607,7 +683,11 @@ namespace densify
         else if (line == "end" && !path.empty())
           path.pop_back();
         else if (line.rfind("set ", 0) == 0 &&
-                 (path.empty() || (path[0] != "Output" && path[0] != "Solver")))
+                 (path.empty() ||
+                  (path[0] != "Output" &&
+                   (path[0] != "Solver" ||
+                    Utilities::trim(line.substr(4, line.find('=') - 4)) ==
+                      "Method"))))
           {
             const std::string entry = line.substr(4);
             const auto        eq    = entry.find('=');
