@@ -1,12 +1,15 @@
 // Declaration, reading and overriding of Densify's parameters.
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <densify/ignored_parameters.h>
 #include <densify/parameters.h>
 #include <densify/utilities.h>
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -583,6 +586,21 @@ namespace densify
         for (; depth > 0; --depth)
           prm.leave_subsection();
       }
+
+    // one warning line for each entry set in the file or by --set that the
+    // scene does not use
+    std::set<std::string> set = entries_set_in_file(filename);
+    for (const std::string &o : overrides)
+      {
+        std::string entry;
+        for (const std::string &part :
+             Utilities::split_string_list(o.substr(0, o.find('=')), '/'))
+          entry += (entry.empty() ? "" : "/") + part;
+        set.insert(entry);
+      }
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      for (const std::string &line : ignored_parameters(prm, set))
+        std::cerr << "densify: warning: " << line << std::endl;
   }
 
 
