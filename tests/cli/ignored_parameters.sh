@@ -1,10 +1,12 @@
 # A parameter set in the file or by --set that the scene does not use gets one
 # warning line naming it and why: Young's modulus while every particle is the
-# preset Sn (set in the file), die friction with the die off (set by --set).
+# preset Sn (set in the file), die friction with the die off (set by --set;
+# the die's diameter, set in the file, is then unused too).
 # Every scene in prm/ sets only what it uses; a used entry gives no warning.
 set -eu
 cd "$WORK_DIR"
 light="$SOURCE_DIR/prm/single_layer_sn_light.prm"
+seven="$SOURCE_DIR/prm/seven_spheres_sn.prm"
 
 expect_warnings() {  # expected count, then the densify arguments
   n=$1; shift
@@ -24,13 +26,14 @@ grep -q "^densify: warning: Material/Young's modulus = 50000 has no effect: only
 echo "== the same for the material custom: used, no warning"
 expect_warnings 0 young.prm --set "Particles/Materials=custom"
 
-echo "== die friction by --set, the die off"
-expect_warnings 1 "$light" --set "Tools/Die wall/Enabled=false" \
+echo "== die friction by --set, the die off (its diameter, set in the file, then too)"
+expect_warnings 2 "$seven" --set "Tools/Die wall/Enabled=false" \
   --set " Tools / Die wall / Friction coefficient = 0.3"
 grep -q "^densify: warning: Tools/Die wall/Friction coefficient = 0.3 has no effect: the die wall is off" err.txt
+grep -q "^densify: warning: Tools/Die wall/Diameter = 7.52 has no effect: the die wall is off" err.txt
 
 echo "== the same with the die on: no warning"
-expect_warnings 0 "$light" --set "Tools/Die wall/Friction coefficient=0.3"
+expect_warnings 0 "$seven" --set "Tools/Die wall/Friction coefficient=0.3"
 
 echo "== every scene in prm/: no warning"
 for scene in "$SOURCE_DIR"/prm/*.prm; do
