@@ -1,12 +1,15 @@
 // Declaration, reading and overriding of Densify's parameters.
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <densify/ignored_parameters.h>
 #include <densify/parameters.h>
 #include <densify/utilities.h>
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -147,9 +150,9 @@ namespace densify
         "(finite-strain von Mises elastoplasticity, Simo 1992; "
         "doc/theory.md). The material of each particle (Sn, Fe, Cu, custom) "
         "gives E, nu and the yield stress. J2 plasticity needs Finite strain "
-        "= true; a single particle between punches is robust (poles held, "
-        "prm/single_sphere_sn.prm), assemblies of touching particles are "
-        "not yet (doc/roadmap.md).",
+        "= true and works for single particles and for layers of touching "
+        "particles in a die (prm/single_layer_sn.prm); elastic suits small "
+        "deformations and verification (prm/hertz.prm).",
         Patterns::Selection("elastic|J2 plasticity"));
       prm.add_parameter(
         "Finite strain",
@@ -335,12 +338,11 @@ namespace densify
         "gmres-amg, gmres-lu or direct); false: only eps n n^T and the "
         "friction law's stiffness (symmetric without friction, CG works; "
         "Newton slows where contacts slide); auto: true for frictionless "
-        "particle contact unless the linear solver is cg-amg. With friction "
-        "it is measured both ways (doc/performance.md): the seven-sphere "
-        "layer needs 185 instead of 278 Newton iterations, but in the dense "
-        "late steps of the paper scene the exact tangent gives Newton steps "
-        "about 45 times too long and step 201 does not converge, so auto leaves "
-        "it off there. The converged answer is the same.",
+        "particle contact unless the linear solver is cg-amg, false with "
+        "friction (where it can overshoot in dense packings; "
+        "doc/performance.md). It changes how Newton converges, not the "
+        "converged answer. Change it when Newton stalls on sliding "
+        "contacts.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
@@ -495,8 +497,8 @@ namespace densify
         "MUMPS, so that a run on several MPI ranks gives the same result "
         "every time; false: MUMPS works on all ranks, whose asynchronous "
         "scheduling changes the round-off from run to run (faster "
-        "factorizations; see doc/performance.md). No effect on one rank or "
-        "with the AMG solvers, which repeat exactly anyway.",
+        "factorizations on several ranks; doc/performance.md). No effect on "
+        "one rank or with the AMG solvers, which repeat exactly anyway.",
         Patterns::Bool());
     }
     prm.leave_subsection();
@@ -659,6 +661,21 @@ namespace densify
         for (; depth > 0; --depth)
           prm.leave_subsection();
       }
+
+    // one warning line for each entry set in the file or by --set that the
+    // scene does not use
+    std::set<std::string> set = entries_set_in_file(filename);
+    for (const std::string &o : overrides)
+      {
+        std::string entry;
+        for (const std::string &part :
+             Utilities::split_string_list(o.substr(0, o.find('=')), '/'))
+          entry += (entry.empty() ? "" : "/") + part;
+        set.insert(entry);
+      }
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      for (const std::string &line : ignored_parameters(prm, set))
+        std::cerr << "densify: warning: " << line << std::endl;
   }
 
 
