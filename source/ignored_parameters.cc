@@ -136,8 +136,29 @@ namespace densify
     const std::string solver = get("Solver/Linear solver");
     const bool        direct = solver == "direct" || solver == "gmres-lu";
 
+    // entries of one solution method only
+    const bool explicit_method = get("Solver/Method") == "explicit";
+
     // why an entry has no effect in this scene; empty where it has one
     const auto why = [&](const std::string &entry) -> std::string {
+      if (!explicit_method && (entry.rfind("Explicit/", 0) == 0 ||
+                               entry == "Material/Density"))
+        return "only Solver/Method = explicit uses it";
+      if (explicit_method &&
+          ((entry.rfind("Solver/", 0) == 0 && entry != "Solver/Method") ||
+           entry == "Contact/Penalty factor" ||
+           entry == "Contact/Gap tolerance" ||
+           entry == "Contact/Maximum augmentations" ||
+           entry == "Contact/Friction tangent" ||
+           entry == "Contact/Geometric tangent" ||
+           entry == "Time stepping/Maximum cut-backs"))
+        return "Solver/Method = explicit has no Newton solver, linear "
+               "solver or multipliers (subsection Explicit sets its contact "
+               "penalty)";
+      if (entry == "Material/Density" && !custom)
+        return "only the material 'custom' uses it, and no particle is "
+               "'custom' (" +
+               materials + "; the presets carry their own density)";
       if ((entry == "Material/Young's modulus" ||
            entry == "Material/Poisson's ratio" ||
            entry == "Material/Yield stress") &&

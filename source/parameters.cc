@@ -559,6 +559,16 @@ namespace densify
         "largest one (> 0); the stable step includes the springs. Larger: "
         "less penetration, smaller time steps.",
         Patterns::Double(1e-6, 100.));
+      prm.add_parameter(
+        "Contact multiplier steps",
+        explicit_dynamics.multiplier_steps,
+        "Each contact point's multiplier lambda (the pressure is p = lambda - "
+        "eps g) follows its pressure over about this many explicit steps, "
+        "lambda += (p - lambda) / N: the penetration of lasting contacts "
+        "vanishes, so the soft penalty of explicit runs does not bias the "
+        "forces; a point contact that just closed still acts as a penalty "
+        "spring. 0: pure penalty (penetration p / eps).",
+        Patterns::Integer(0));
     }
     prm.leave_subsection();
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace densify
 {
@@ -136,13 +137,18 @@ namespace densify
         external += body_forces;
         body_solution = solution;
       }
-    ContactResults contact;
-    contact.tools =
-      tool_contact.assemble_and_commit(*mapping, solution_ghosted, external);
+    const unsigned int n_relax = prm.explicit_dynamics.multiplier_steps;
+    const double       relaxation = n_relax > 0 ? 1. / n_relax : 0.;
+    ContactResults     contact;
+    contact.tools = tool_contact.assemble_and_commit(*mapping,
+                                                     solution_ghosted,
+                                                     external,
+                                                     relaxation);
     if (has_particle_contact)
       contact.particles = particle_contact.assemble_and_commit(*mapping,
                                                                solution_ghosted,
-                                                               external);
+                                                               external,
+                                                               relaxation);
     external.compress(VectorOperation::add);
 
     // the account of the loads: work of the moving upper punch (its normal
@@ -171,16 +177,22 @@ namespace densify
     // friction measures the slip of the next step from here
     committed_ghosted = solution_ghosted;
 
-    // time-weighted sums for the means over the interval
-    ContactResults &sum = interval_sum;
-    for (unsigned int k = 0; k < n_tool_kinds; ++k)
+    // time-weighted sums of the forces and of their first moments in scene
+    // time, for the least-squares line over the interval
+    for (const double tau : {0., scene_time})
       {
-        sum.tools.normal_force[k] += dt * contact.tools.normal_force[k];
-        sum.tools.axial_force[k] += dt * contact.tools.axial_force[k];
-        sum.tools.friction_force[k] += dt * contact.tools.friction_force[k];
+        const double    w   = (tau == 0. ? dt : dt * scene_time);
+        ContactResults &sum = (tau == 0. ? interval_sum : interval_moment);
+        for (unsigned int k = 0; k < n_tool_kinds; ++k)
+          {
+            sum.tools.normal_force[k] += w * contact.tools.normal_force[k];
+            sum.tools.axial_force[k] += w * contact.tools.axial_force[k];
+            sum.tools.friction_force[k] += w * contact.tools.friction_force[k];
+          }
+        sum.particles.normal_force += w * contact.particles.normal_force;
+        sum.particles.friction_force += w * contact.particles.friction_force;
       }
-    sum.particles.normal_force += dt * contact.particles.normal_force;
-    sum.particles.friction_force += dt * contact.particles.friction_force;
+    ContactResults &sum = interval_sum;
     sum.tools.max_penetration =
       std::max(sum.tools.max_penetration, contact.tools.max_penetration);
     sum.particles.max_penetration =
@@ -190,7 +202,9 @@ namespace densify
     sum.tools.n_slip       = contact.tools.n_slip;
     sum.particles.n_active = contact.particles.n_active;
     sum.particles.n_slip   = contact.particles.n_slip;
-    interval_weight += dt;
+    interval_weight[0] += dt;
+    interval_weight[1] += dt * scene_time;
+    interval_weight[2] += dt * scene_time * scene_time;
   }
 
 
@@ -202,25 +216,43 @@ namespace densify
   {
     (void)step;
     interval_sum    = ContactResults();
-    interval_weight = 0.;
+    interval_moment = ContactResults();
+    interval_weight = {{0., 0., 0.}};
     explicit_account = explicit_dynamics->advance(*this, solution, time);
     current_time     = time;
     current_upper    = upper_punch_position(time);
     update_ghosts();
     s.increments = explicit_account.interval_steps;
 
-    // the means over the interval
-    ContactResults mean = interval_sum;
-    const double   w    = interval_weight > 0. ? 1. / interval_weight : 0.;
+    // each force at the station from the least-squares line through its
+    // values over the interval: it filters the vibrations like a mean, but
+    // without the mean's lag of half an interval behind a rising force
+    const auto [S0, S1, S2] = interval_weight;
+    const double det        = S0 * S2 - S1 * S1;
+    const bool   line       = det > 1e-12 * S0 * S2;
+    const auto   at_station = [&](const auto &sum, const auto &moment) {
+      if (!line)
+        return std::decay_t<decltype(sum)>(sum / S0);
+      const auto slope = (S0 * moment - S1 * sum) / det;
+      return std::decay_t<decltype(sum)>((sum - S1 * slope) / S0 + time * slope);
+    };
+    ContactResults       fit = interval_sum;
+    const ContactResults &m  = interval_moment;
     for (unsigned int k = 0; k < n_tool_kinds; ++k)
       {
-        mean.tools.normal_force[k] *= w;
-        mean.tools.axial_force[k] *= w;
-        mean.tools.friction_force[k] *= w;
+        fit.tools.normal_force[k] = at_station(interval_sum.tools.normal_force[k],
+                                               m.tools.normal_force[k]);
+        fit.tools.axial_force[k]  = at_station(interval_sum.tools.axial_force[k],
+                                              m.tools.axial_force[k]);
+        fit.tools.friction_force[k] =
+          at_station(interval_sum.tools.friction_force[k],
+                     m.tools.friction_force[k]);
       }
-    mean.particles.normal_force *= w;
-    mean.particles.friction_force *= w;
-    return mean;
+    fit.particles.normal_force =
+      at_station(interval_sum.particles.normal_force, m.particles.normal_force);
+    fit.particles.friction_force = at_station(
+      interval_sum.particles.friction_force, m.particles.friction_force);
+    return fit;
   }
 
 

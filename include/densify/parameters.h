@@ -221,6 +221,9 @@ namespace densify
     /// Contact springs' squared frequency against the elements' largest one
     /// (sets the contact penalty; the stable step accounts for it).
     double contact_stiffness = 0.25;
+    /// The contact multipliers follow the pressures over about this many
+    /// steps (0: pure penalty).
+    unsigned int multiplier_steps = 50;
   };
 
   /// Subsection "Output": where and what to write.

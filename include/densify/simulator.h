@@ -466,10 +466,11 @@ namespace densify
           &upper_position &lateral &upper_friction;
       }
     } explicit_work;
-    /// Time-weighted sums of the contact results over the current interval
-    /// between stations, and the weight.
-    ContactResults interval_sum;
-    double         interval_weight = 0.;
+    /// Time-weighted sums of the contact forces over the current interval
+    /// between stations, of the forces times scene time, and of the
+    /// weights times 1, t and t^2 (the least-squares line at the station).
+    ContactResults        interval_sum, interval_moment;
+    std::array<double, 3> interval_weight = {{0., 0., 0.}};
     /// Body force vector of the last evaluation and the displacement then
     /// (body work); the displacement at the last contact search.
     TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;

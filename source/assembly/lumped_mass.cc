@@ -15,9 +15,10 @@ namespace densify
 {
   namespace
   {
-    /// Volume and sum of the squared shape gradients of a linear tetrahedron
+    /// Volume, sum of the squared shape gradients G = sum_a |g_a|^2 and
+    /// the largest eigenvalue of sum_a g_a g_a^T of a linear tetrahedron
     /// with corners @p x.
-    std::pair<double, double>
+    std::array<double, 3>
     tetrahedron_measures(const std::array<Point<3>, 4> &x)
     {
       Tensor<2, 3> J;
@@ -26,20 +27,28 @@ namespace densify
           J[e][d] = x[d + 1][e] - x[0][e];
       const double det = determinant(J);
       if (!(det > 0.))
-        return {det / 6., std::numeric_limits<double>::infinity()};
+        return {{det / 6.,
+                 std::numeric_limits<double>::infinity(),
+                 std::numeric_limits<double>::infinity()}};
       // grad N_a = J^-T grad_ref N_a, grad_ref N_0 = -(1,1,1)
-      const Tensor<2, 3> J_inv_T = transpose(invert(J));
-      double             G       = 0.;
-      Tensor<1, 3>       g0;
-      for (unsigned int a = 0; a < 3; ++a)
+      const Tensor<2, 3>    J_inv_T = transpose(invert(J));
+      SymmetricTensor<2, 3> GG;
+      Tensor<1, 3>          g0;
+      for (unsigned int a = 0; a < 4; ++a)
         {
-          Tensor<1, 3> e;
-          e[a]                 = 1.;
-          const Tensor<1, 3> g = J_inv_T * e;
-          G += g.norm_square();
-          g0 -= g;
+          Tensor<1, 3> g;
+          if (a < 3)
+            {
+              Tensor<1, 3> e;
+              e[a] = 1.;
+              g    = J_inv_T * e;
+              g0 -= g;
+            }
+          else
+            g = g0;
+          GG += symmetrize(outer_product(g, g));
         }
-      return {det / 6., G + g0.norm_square()};
+      return {{det / 6., trace(GG), eigenvalues(GG)[0]}};
     }
   } // namespace
 
@@ -115,12 +124,16 @@ namespace densify
               for (unsigned int c = 0; c < 3; ++c)
                 x[v][c] += u(cell->vertex_dof_index(v, c));
             }
-          const auto [V, G]      = tetrahedron_measures(x);
-          const Material    &m   = *materials[cell->material_id()];
-          const unsigned int e   = cell->active_cell_index();
-          const double       c2  = m.p_wave_modulus() / m.density();
-          step_unscaled[e]       = 1. / std::sqrt(c2 * G);
-          volume[e]              = cell->measure();
+          const auto [V, G, G_max] = tetrahedron_measures(x);
+          (void)V;
+          const Material    &m = *materials[cell->material_id()];
+          const unsigned int e = cell->active_cell_index();
+          // the smaller of the two bounds of the largest eigenvalue of the
+          // element stiffness per volume (doc/theory.md)
+          const double stiffness =
+            std::min(m.p_wave_modulus() * G, 3. * m.bulk_modulus() * G_max);
+          step_unscaled[e] = 1. / std::sqrt(stiffness / m.density());
+          volume[e]        = cell->measure();
         }
 
     // 2. the contact springs' share: with omega_c^2 = kappa omega_e^2 the

@@ -693,14 +693,18 @@ namespace densify
                         if (friction_on && r.status == ContactStatus::slip)
                           ++result.n_slip;
                         result.normal_force += weight * p * JxW;
+                        // the normal spring's potential -lambda g +
+                        // eps g^2 / 2 (p = lambda - eps g) and the stick
+                        // spring's
                         result.elastic_energy +=
-                          weight * 0.5 *
-                          (p * p + (friction_on && friction.model ==
-                                                     FrictionModel::coulomb ?
-                                      r.traction.norm_square() /
-                                        friction.tangential_ratio :
-                                      0.)) /
-                          eps * JxW;
+                          weight *
+                          (-lambda[idx] * g + 0.5 * eps * g * g +
+                           (friction_on &&
+                                friction.model == FrictionModel::coulomb ?
+                              0.5 * r.traction.norm_square() /
+                                (friction.tangential_ratio * eps) :
+                              0.)) *
+                          JxW;
                         result.friction_force +=
                           weight * r.traction.norm() * JxW;
                         p_out      = p;
@@ -925,10 +929,14 @@ namespace densify
   ParticleContact::assemble_and_commit(
     const Mapping<3>                    &mapping,
     const TrilinosWrappers::MPI::Vector &solution,
-    TrilinosWrappers::MPI::Vector       &residual)
+    TrilinosWrappers::MPI::Vector       &residual,
+    const double                         relaxation)
   {
     Outputs out;
     out.residual = &residual;
+    std::vector<double> pressure(lambda.size());
+    if (relaxation > 0.)
+      out.new_lambda = &pressure;
     std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
     std::vector<double>       new_slip = accumulated_slip;
     const bool                friction_on = friction.mu > 0.;
@@ -938,6 +946,11 @@ namespace densify
         out.new_slip     = &new_slip;
       }
     const ParticleContactResult result = loop(mapping, solution, out);
+    // the multipliers relax towards the pressures (an integral action on
+    // the penetration)
+    if (relaxation > 0.)
+      for (unsigned int k = 0; k < lambda.size(); ++k)
+        lambda[k] += relaxation * (pressure[k] - lambda[k]);
     if (friction_on)
       {
         committed_traction.swap(new_traction);

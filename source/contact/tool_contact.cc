@@ -295,14 +295,15 @@ namespace densify
                 if (r.status == ContactStatus::slip && rough)
                   ++result.n_slip;
                 const unsigned int kind = static_cast<unsigned int>(tool.kind);
+                // the normal spring's potential -lambda g + eps g^2 / 2
+                // (p = lambda - eps g) and the stick spring's
                 result.elastic_energy +=
-                  0.5 *
-                  (p * p +
+                  (-lambda[idx] * g + 0.5 * eps * g * g +
                    (rough && friction_laws[t].model == FrictionModel::coulomb ?
-                      r.traction.norm_square() /
-                        friction_laws[t].tangential_ratio :
-                      0.)) /
-                  eps * JxW;
+                      0.5 * r.traction.norm_square() /
+                        (friction_laws[t].tangential_ratio * eps) :
+                      0.)) *
+                  JxW;
                 result.normal_force[kind] += p * JxW;
                 result.axial_force[kind] += traction[2] * JxW;
                 result.friction_force[kind] += r.traction * JxW;
@@ -461,10 +462,14 @@ namespace densify
   ToolContactResult
   ToolContact::assemble_and_commit(const Mapping<3> &mapping,
                                    const TrilinosWrappers::MPI::Vector &solution,
-                                   TrilinosWrappers::MPI::Vector &residual)
+                                   TrilinosWrappers::MPI::Vector &residual,
+                                   const double relaxation)
   {
     Outputs out;
     out.residual = &residual;
+    std::vector<double> pressure(lambda.size());
+    if (relaxation > 0.)
+      out.new_lambda = &pressure;
     std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
     std::vector<double>       new_slip = accumulated_slip;
     if (has_friction())
@@ -473,6 +478,11 @@ namespace densify
         out.new_slip     = &new_slip;
       }
     const ToolContactResult result = loop(mapping, solution, out);
+    // the multipliers relax towards the pressures (an integral action on
+    // the penetration)
+    if (relaxation > 0.)
+      for (unsigned int k = 0; k < lambda.size(); ++k)
+        lambda[k] += relaxation * (pressure[k] - lambda[k]);
     if (has_friction())
       {
         committed_traction.swap(new_traction);

@@ -32,12 +32,13 @@ namespace densify
    * stable time step of central differences with it.
    *
    * The stable step of a cell is bounded from below by
-   * dt_e = 1 / (c_e sqrt(G_e)), with c_e = sqrt(M_e / (rho_e f_e)) the
-   * dilatational wave speed (M_e = lambda + 2 mu) and G_e = sum_a |grad N_a|^2
-   * in the current configuration: for any corner displacements v,
-   * eps:D:eps <= M_e |v|^2 G_e, so the largest eigenvalue of
-   * M_lumped^-1 K_e is at most 4 c_e^2 G_e, and the largest frequency of the
-   * mesh at most that of its stiffest cell (doc/theory.md). The contact
+   * dt_e = 1 / sqrt(k_e / (rho_e f_e)) with k_e = min(M G, 3 K G_max):
+   * M = lambda + 2 mu, K the bulk modulus, G = sum_a |grad N_a|^2 and G_max
+   * the largest eigenvalue of sum_a grad N_a grad N_a^T in the current
+   * configuration. For any corner displacements v, eps:D:eps <= k_e |v|^2,
+   * so the largest eigenvalue of M_lumped^-1 K_e is at most 4 k_e / rho_e
+   * f_e, and the largest frequency of the mesh at most that of its
+   * stiffest cell (doc/theory.md). The contact
    * springs add omega_c^2 = 2 r eps A_i / m_i at a surface vertex i (A_i its
    * share of the surface, r = max(1, tangential / normal penalty)); the
    * stable step is 2 / sqrt(omega_e,max^2 + omega_c,max^2).

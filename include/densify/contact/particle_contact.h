@@ -190,7 +190,8 @@ namespace densify
     ParticleContactResult
     assemble_and_commit(const Mapping<3>                    &mapping,
                         const TrilinosWrappers::MPI::Vector &solution,
-                        TrilinosWrappers::MPI::Vector       &residual);
+                        TrilinosWrappers::MPI::Vector       &residual,
+                        const double                         relaxation = 0.);
 
     /// lambda <- max(0, lambda - eps g).
     void

@@ -173,11 +173,16 @@ namespace densify
      * forces at @p solution to @p residual and accept @p solution as the
      * start of the next increment (explicit dynamics, where every step is
      * accepted). The result carries the friction work of the increment.
+     * With @p relaxation r > 0 each multiplier then moves towards its
+     * pressure, lambda += r (p - lambda): an integral action that removes
+     * the penetration of lasting contacts over about 1/r calls, so that the
+     * penalty does not bias the slowly loaded (quasi-static) answer.
      */
     ToolContactResult
     assemble_and_commit(const Mapping<3>                    &mapping,
                         const TrilinosWrappers::MPI::Vector &solution,
-                        TrilinosWrappers::MPI::Vector       &residual);
+                        TrilinosWrappers::MPI::Vector       &residual,
+                        const double                         relaxation = 0.);
 
     /// lambda <- max(0, lambda - eps g) at every quadrature point.
     void

@@ -143,6 +143,13 @@ namespace densify
       return kappa + 4. / 3. * mu;
     }
 
+    /// K (MPa).
+    double
+    bulk_modulus() const override
+    {
+      return kappa;
+    }
+
     /// The mass density (t/mm^3).
     double
     density() const override

@@ -109,6 +109,10 @@ namespace densify
     virtual double
     p_wave_modulus() const = 0;
 
+    /// Bulk modulus K of the elastic response (MPa).
+    virtual double
+    bulk_modulus() const = 0;
+
     /// Mass density (t/mm^3); 0 if none was given.
     virtual double
     density() const = 0;
@@ -182,6 +186,12 @@ namespace densify
     p_wave_modulus() const override
     {
       return lambda + 2. * mu;
+    }
+
+    double
+    bulk_modulus() const override
+    {
+      return lambda + 2. / 3. * mu;
     }
 
     double

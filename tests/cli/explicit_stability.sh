@@ -1,0 +1,51 @@
+# Explicit dynamics (Solver/Method = explicit) at its stability limit: an
+# elastic sphere pressed between punches with physical densities (Explicit/
+# Mass scaling = none), so that the stable step the code computes sets the
+# time step. At 0.9 of it the run is stable and its energy balances; at 1.5
+# of it the integration must go unstable, and the run must stop cleanly: exit
+# code 1, one error line naming Explicit/Time step safety, and no NaN in
+# statistics.csv.
+set -u
+cd "$WORK_DIR"
+run() {
+  "$DENSIFY" "$SOURCE_DIR/prm/hertz.prm" --set "Output/Directory=$1" \
+    --set "Output/Interval=0" --set "Mesh/Polynomial degree=1" \
+    --set "Mesh/Element size=0.5" --set "Mesh/Refinement directions=" \
+    --set "Material/Finite strain=true" \
+    --set "Tools/Upper punch/Displacement history=0:0, 1:0.01" \
+    --set "Time stepping/Number of steps=4" \
+    --set "Solver/Method=explicit" --set "Explicit/Mass scaling=none" \
+    --set "Explicit/Loading time=2e-4" --set "Explicit/Damping ratio=0.05" \
+    --set "Explicit/Time step safety=$2"
+}
+out=$(run stable 0.9 2>&1)
+rc=$?
+echo "safety 0.9: exit $rc"
+[ $rc -eq 0 ] || { echo "$out"; exit 1; }
+/usr/bin/python3 - stable/statistics.csv <<'PY' || exit 1
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+# no NaN but the density (NaN without a die)
+assert all(math.isfinite(float(v)) for r in rows for k, v in r.items()
+           if k != "relative_density")
+last = rows[-1]
+work = float(last["external_work"])
+balance = float(last["energy_balance"])
+print("safety 0.9: external work %.4g mJ, balance %.2g mJ (%.2g %%), %s steps"
+      % (work, balance, 100 * balance / work, last["explicit_steps"]))
+assert work > 0 and abs(balance) < 0.01 * work
+PY
+err=$(run unstable 1.5 2>&1 >/dev/null)
+rc=$?
+echo "safety 1.5: exit $rc: $err"
+[ $rc -eq 1 ] || exit 1
+[ "$(printf '%s\n' "$err" | wc -l)" -eq 1 ] || exit 1
+printf '%s' "$err" | grep -q "unstable" || exit 1
+printf '%s' "$err" | grep -q "Explicit/Time step safety" || exit 1
+/usr/bin/python3 - unstable/statistics.csv <<'PY' || exit 1
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert all(math.isfinite(float(v)) for r in rows for k, v in r.items()
+           if k != "relative_density")
+PY
+echo "stable at 0.9, stopped cleanly at 1.5: yes"
