@@ -534,9 +534,11 @@ namespace densify
         "Time step safety",
         explicit_dynamics.safety,
         "Time step as a fraction of the stable step computed from the "
-        "elements and the contact springs (0 < s <= 2; above 1 the run is "
-        "expected to go unstable and is stopped with a message).",
-        Patterns::Double(1e-3, 2.));
+        "elements and the contact springs (0 < s <= 10). That step is a "
+        "lower bound of the true limit (doc/theory.md), so values somewhat "
+        "above 1 may still run; a run that goes unstable is stopped with a "
+        "message.",
+        Patterns::Double(1e-3, 10.));
       prm.add_parameter(
         "Ramp fraction",
         explicit_dynamics.ramp_fraction,

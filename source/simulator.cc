@@ -1611,8 +1611,9 @@ namespace densify
             s.friction_work                    = explicit_work.friction;
             s.contact_energy                   = explicit_work.contact_energy;
             s.external_work     = explicit_work.tools + explicit_work.body;
+            s.multiplier_work   = explicit_work.multipliers;
             s.added_mass        = lumped_mass->added_mass_fraction();
-            s.energy_balance    = s.external_work -
+            s.energy_balance    = s.external_work + s.multiplier_work -
                                (s.kinetic_energy + s.internal_work +
                                 s.damping_work + s.friction_work +
                                 s.contact_energy);

@@ -5,6 +5,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <densify/material/factory.h>
 #include <densify/simulator.h>
 
 #include <algorithm>
@@ -36,6 +37,11 @@ namespace densify
     TrilinosWrappers::MPI::Vector mass;
     update_ghosts();
     lumped_mass->update(solution_ghosted, required, mass);
+    // the cell bound calibrated by the mesh's measured largest frequency,
+    // with a margin for the power iteration (which approaches it from
+    // below) and for the cells' later distortion
+    lumped_mass->calibrate(largest_frequency2(mass), 1.25);
+    lumped_mass->update(solution_ghosted, required, mass);
     explicit_penalty =
       lumped_mass->contact_penalties(prm.explicit_dynamics.contact_stiffness);
     std::vector<double> diameters;
@@ -47,6 +53,61 @@ namespace densify
     body_forces.reinit(locally_owned, comm);
     body_solution.reinit(locally_owned, comm);
     return explicit_penalty;
+  }
+
+
+
+  double
+  Simulator::largest_frequency2(const TrilinosWrappers::MPI::Vector &mass)
+  {
+    TimerOutput::Scope t(timer, "Explicit: largest frequency");
+    // the particles' laws made elastic (Hencky, no history): the stiffness
+    // that decides the stable step
+    MaterialParameters elastic_prm = prm.material;
+    elastic_prm.model              = "elastic";
+    std::vector<std::shared_ptr<const Material>> elastic;
+    for (const Particle &p : particles)
+      elastic.push_back(create_material(p.material, elastic_prm));
+    std::swap(elastic, particle_material);
+    const bool history = has_history;
+    has_history        = false;
+
+    // power iteration on M^-1 K, K x by a finite difference of the internal
+    // forces at the current state; a start vector that depends on the
+    // global DoF index only, so that any number of ranks finds the same
+    TrilinosWrappers::MPI::Vector x(locally_owned, comm), Kx(x), f0(x);
+    const TrilinosWrappers::MPI::Vector u = solution;
+    update_ghosts();
+    assemble_internal(f0, false);
+    for (const types::global_dof_index i : locally_owned)
+      x(i) = std::sin(1. + 7. * i);
+    x.compress(VectorOperation::insert);
+    double omega2 = 0.;
+    for (unsigned int it = 0; it < 40; ++it)
+      {
+        const double delta = 1e-7 * h_min / std::max(x.linfty_norm(), 1e-300);
+        solution = u;
+        solution.add(delta, x);
+        update_ghosts();
+        Kx = 0.;
+        assemble_internal(Kx, false);
+        Kx -= f0;
+        Kx /= delta;
+        // Rayleigh quotient x.Kx / x.Mx, then x <- M^-1 K x normalised
+        double xMx = 0.;
+        for (unsigned int k = 0; k < x.locally_owned_size(); ++k)
+          xMx += x.begin()[k] * mass.begin()[k] * x.begin()[k];
+        omega2 = (x * Kx) / Utilities::MPI::sum(xMx, comm);
+        for (unsigned int k = 0; k < x.locally_owned_size(); ++k)
+          x.begin()[k] =
+            mass.begin()[k] > 0. ? Kx.begin()[k] / mass.begin()[k] : 0.;
+        x /= std::max(x.linfty_norm(), 1e-300);
+      }
+    solution = u;
+    update_ghosts();
+    std::swap(elastic, particle_material);
+    has_history = history;
+    return omega2;
   }
 
 
@@ -172,6 +233,8 @@ namespace densify
     explicit_work.lateral        = lateral;
     explicit_work.friction +=
       contact.tools.friction_work + contact.particles.friction_work;
+    explicit_work.multipliers +=
+      contact.tools.multiplier_work + contact.particles.multiplier_work;
     explicit_work.contact_energy =
       contact.tools.elastic_energy + contact.particles.elastic_energy;
     // friction measures the slip of the next step from here

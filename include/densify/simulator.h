@@ -417,6 +417,11 @@ namespace densify
     ContactResults
     advance_explicit(const double time, const unsigned int step, StepStatistics &s);
 
+    /// The largest squared frequency of the elements (elastic, at the
+    /// current state) with the lumped mass @p mass, by power iteration.
+    double
+    largest_frequency2(const TrilinosWrappers::MPI::Vector &mass);
+
     // ExplicitSystem
     double
     update_mass(const double                   required_step,
@@ -448,11 +453,13 @@ namespace densify
     std::vector<double>               explicit_penalty;
     std::unique_ptr<ExplicitDynamics> explicit_dynamics;
     /// Energy account of the explicit run kept by the system (mJ): work of
-    /// the moving tools and of the body force, friction work, and the
-    /// contact springs' elastic energy now.
+    /// the moving tools and of the body force, friction work, the contact
+    /// springs' elastic energy now, and the energy the multiplier updates
+    /// put into them.
     struct ExplicitWork
     {
-      double tools = 0., body = 0., friction = 0., contact_energy = 0.;
+      double tools = 0., body = 0., friction = 0., contact_energy = 0.,
+             multipliers = 0.;
       /// Upper punch force and position, friction and lateral position at
       /// the last evaluation (for the trapezoidal tool work).
       double       upper_force = 0., upper_position = 0., lateral = 0.;
@@ -462,7 +469,7 @@ namespace densify
       void
       serialize(Archive &archive, const unsigned int /*version*/)
       {
-        archive &tools &body &friction &contact_energy &upper_force
+        archive &tools &body &friction &contact_energy &multipliers &upper_force
           &upper_position &lateral &upper_friction;
       }
     } explicit_work;

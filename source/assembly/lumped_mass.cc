@@ -152,13 +152,16 @@ namespace densify
     double spring_share = 1.;
     if (!penalty.empty() && last_mass.size() > 0)
       {
-        const double omega_e2 = 4. / (min_unscaled * min_unscaled);
+        const double omega_e2 =
+          calibration * 4. / (min_unscaled * min_unscaled);
         spring_share = 1. + contact_frequency2(last_mass) / omega_e2;
       }
     if (scaling != MassScaling::none && required_step > 0.)
       {
-        // each cell's stable step needs to reach required_step * share
-        const double target = required_step * std::sqrt(spring_share);
+        // each cell's stable step needs to reach required_step * share,
+        // the calibrated bound's
+        const double target =
+          required_step * std::sqrt(spring_share * calibration);
         double       needed = 1.;
         for (const auto &cell : dof_handler->active_cell_iterators())
           if (cell->is_locally_owned())
@@ -215,9 +218,21 @@ namespace densify
     mass_total     = scaled;
     last_mass      = mass;
 
-    const double omega_e2 = 4. / (min_step * min_step);
+    omega_bound2          = 4. / (min_step * min_step);
+    const double omega_e2 = calibration * omega_bound2;
     const double omega_c2 = penalty.empty() ? 0. : contact_frequency2(mass);
     return 2. / std::sqrt(omega_e2 + omega_c2);
+  }
+
+
+
+  void
+  LumpedMass::calibrate(const double omega2, const double margin)
+  {
+    if (omega_bound2 > 0. && omega2 > 0.)
+      calibration = std::min(1., margin * omega2 / omega_bound2);
+    // the scaling starts afresh from the calibrated bound
+    std::fill(factor.begin(), factor.end(), 1.);
   }
 
 
@@ -268,7 +283,7 @@ namespace densify
         }
     min_step = Utilities::MPI::min(min_step, comm);
     Utilities::MPI::max(ratio, comm, ratio);
-    const double omega_e2 = 4. / (min_step * min_step);
+    const double omega_e2 = calibration * 4. / (min_step * min_step);
     penalty.assign(materials.size(), 0.);
     for (unsigned int p = 0; p < materials.size(); ++p)
       if (ratio[p] > 0.)

@@ -650,7 +650,13 @@ namespace densify
                     assigned[idx] != best.facet)
                   ++(*out.n_changed);
                 if (out.new_lambda != nullptr)
-                  (*out.new_lambda)[idx] = p;
+                  {
+                    (*out.new_lambda)[idx] = p;
+                    // d(p^2 / 2 eps) / d lambda times the multiplier's
+                    // change per unit relaxation
+                    result.multiplier_work +=
+                      weight * p / eps * (p - lambda[idx]) * JxW;
+                  }
                 if (out.new_traction != nullptr && friction_on)
                   {
                     (*out.new_traction)[idx] = r.traction;
@@ -693,18 +699,16 @@ namespace densify
                         if (friction_on && r.status == ContactStatus::slip)
                           ++result.n_slip;
                         result.normal_force += weight * p * JxW;
-                        // the normal spring's potential -lambda g +
-                        // eps g^2 / 2 (p = lambda - eps g) and the stick
-                        // spring's
+                        // the potential p^2 / 2 eps of p = max(0, lambda -
+                        // eps g) and the stick spring's
                         result.elastic_energy +=
-                          weight *
-                          (-lambda[idx] * g + 0.5 * eps * g * g +
-                           (friction_on &&
-                                friction.model == FrictionModel::coulomb ?
-                              0.5 * r.traction.norm_square() /
-                                (friction.tangential_ratio * eps) :
-                              0.)) *
-                          JxW;
+                          weight * 0.5 *
+                          (p * p + (friction_on && friction.model ==
+                                                     FrictionModel::coulomb ?
+                                      r.traction.norm_square() /
+                                        friction.tangential_ratio :
+                                      0.)) /
+                          eps * JxW;
                         result.friction_force +=
                           weight * r.traction.norm() * JxW;
                         p_out      = p;
@@ -843,6 +847,7 @@ namespace densify
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
     result.friction_work   = Utilities::MPI::sum(result.friction_work, comm);
     result.elastic_energy  = Utilities::MPI::sum(result.elastic_energy, comm);
+    result.multiplier_work = Utilities::MPI::sum(result.multiplier_work, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
@@ -945,7 +950,8 @@ namespace densify
         out.new_traction = &new_traction;
         out.new_slip     = &new_slip;
       }
-    const ParticleContactResult result = loop(mapping, solution, out);
+    ParticleContactResult result = loop(mapping, solution, out);
+    result.multiplier_work *= relaxation;
     // the multipliers relax towards the pressures (an integral action on
     // the penetration)
     if (relaxation > 0.)

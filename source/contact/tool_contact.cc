@@ -231,7 +231,12 @@ namespace densify
                   rough ? friction_laws[t] : FrictionLaw());
                 const double p = r.pressure;
                 if (out.new_lambda != nullptr)
-                  (*out.new_lambda)[idx] = p;
+                  {
+                    (*out.new_lambda)[idx] = p;
+                    // d(p^2 / 2 eps) / d lambda times the multiplier's
+                    // change per unit relaxation
+                    result.multiplier_work += p / eps * (p - lambda[idx]) * JxW;
+                  }
                 if (out.new_traction != nullptr && rough)
                   {
                     (*out.new_traction)[idx] = r.traction;
@@ -295,15 +300,16 @@ namespace densify
                 if (r.status == ContactStatus::slip && rough)
                   ++result.n_slip;
                 const unsigned int kind = static_cast<unsigned int>(tool.kind);
-                // the normal spring's potential -lambda g + eps g^2 / 2
-                // (p = lambda - eps g) and the stick spring's
+                // the potential p^2 / 2 eps of p = max(0, lambda - eps g)
+                // and the stick spring's
                 result.elastic_energy +=
-                  (-lambda[idx] * g + 0.5 * eps * g * g +
+                  0.5 *
+                  (p * p +
                    (rough && friction_laws[t].model == FrictionModel::coulomb ?
-                      0.5 * r.traction.norm_square() /
-                        (friction_laws[t].tangential_ratio * eps) :
-                      0.)) *
-                  JxW;
+                      r.traction.norm_square() /
+                        friction_laws[t].tangential_ratio :
+                      0.)) /
+                  eps * JxW;
                 result.normal_force[kind] += p * JxW;
                 result.axial_force[kind] += traction[2] * JxW;
                 result.friction_force[kind] += r.traction * JxW;
@@ -394,6 +400,7 @@ namespace densify
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
     result.friction_work   = Utilities::MPI::sum(result.friction_work, comm);
     result.elastic_energy  = Utilities::MPI::sum(result.elastic_energy, comm);
+    result.multiplier_work = Utilities::MPI::sum(result.multiplier_work, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
@@ -477,7 +484,8 @@ namespace densify
         out.new_traction = &new_traction;
         out.new_slip     = &new_slip;
       }
-    const ToolContactResult result = loop(mapping, solution, out);
+    ToolContactResult result = loop(mapping, solution, out);
+    result.multiplier_work *= relaxation;
     // the multipliers relax towards the pressures (an integral action on
     // the penetration)
     if (relaxation > 0.)

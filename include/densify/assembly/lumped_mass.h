@@ -82,6 +82,36 @@ namespace densify
     std::vector<double>
     contact_penalties(const double stiffness);
 
+    /**
+     * The largest squared frequency of the elements with the mass of the
+     * last update() as the cell bound gives it (1/s^2), for calibrate().
+     */
+    double
+    bound_frequency2() const
+    {
+      return omega_bound2;
+    }
+
+    /**
+     * Calibrate the cell bound by a measured largest squared frequency
+     * @p omega2 of the mesh (the assembled elements with the mass of the
+     * last update()): from now on the stable step and the mass scaling use
+     * margin * omega2 / bound_frequency2() (at most 1) times the bound. The
+     * cell bound is safe but, measured on meshes of spheres, 3-4 times too
+     * small a step; the calibration keeps its dependence on each cell's
+     * current shape. Recompute the mass (update()) and the contact penalty
+     * afterwards.
+     */
+    void
+    calibrate(const double omega2, const double margin);
+
+    /// The calibration factor (1: none).
+    double
+    calibration_factor() const
+    {
+      return calibration;
+    }
+
     /// Added mass over physical mass of the whole mesh (0 without scaling).
     double
     added_mass_fraction() const
@@ -134,6 +164,9 @@ namespace densify
     /// Contact penalty per particle (empty until contact_penalties()).
     std::vector<double> penalty;
     double              added_fraction = 0., mass_total = 0.;
+    /// Squared-frequency calibration of the cell bound, and the bound's
+    /// largest squared frequency at the last update.
+    double calibration = 1., omega_bound2 = 0.;
     /// Per particle: total scaled mass and the mass-weighted mean of
     /// M / (rho f), the squared wave speed.
     std::vector<double> particle_mass, particle_wave_speed2;

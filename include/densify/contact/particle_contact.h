@@ -45,6 +45,8 @@ namespace densify
     double friction_work = 0.;
     /// Elastic energy of the springs, as ToolContactResult::elastic_energy.
     double elastic_energy = 0.;
+    /// As ToolContactResult::multiplier_work.
+    double multiplier_work = 0.;
   };
 
   /**

@@ -44,10 +44,13 @@ namespace densify
     /// beyond the stick spring's; computed by commit() and
     /// assemble_and_commit() only.
     double friction_work = 0.;
-    /// Elastic energy of the penalty springs now (mJ): 1/2 (p^2 / eps +
-    /// |t|^2 / eps_t) over the contact points (the stored energy of pure
-    /// penalty contact, without multipliers).
+    /// Elastic energy of the contact springs now (mJ): 1/2 (p^2 / eps +
+    /// |t|^2 / eps_t) over the contact points, the potential of
+    /// p = max(0, lambda - eps g) at fixed multipliers.
     double elastic_energy = 0.;
+    /// Energy the multiplier update of assemble_and_commit() added to the
+    /// springs (mJ): sum of p / eps times the change of lambda.
+    double multiplier_work = 0.;
   };
 
   /**

@@ -68,11 +68,13 @@ namespace densify
     /// Explicit dynamics' energy account (mJ; 0 for implicit runs): kinetic
     /// energy, work of the internal forces (elastic energy + plastic work),
     /// friction and damping work, elastic energy of the contact springs,
-    /// work of the moving tools and body forces, and the balance
-    /// external - (kinetic + internal + friction + damping + contact).
+    /// work of the moving tools and body forces, the energy the contact
+    /// multipliers' updates put into the springs, and the balance
+    /// external + multiplier - (kinetic + internal + friction + damping +
+    /// contact).
     double kinetic_energy = 0., internal_work = 0., friction_work = 0.,
            damping_work = 0., contact_energy = 0., external_work = 0.,
-           energy_balance = 0.;
+           energy_balance = 0., multiplier_work = 0.;
   };
 
   /**
