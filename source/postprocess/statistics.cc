@@ -1,20 +1,27 @@
 // The statistics.csv writer.
 #include <densify/postprocess/statistics.h>
+#include <densify/utilities.h>
 
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace densify
 {
   StatisticsWriter::StatisticsWriter(const std::string &filename,
                                      const bool         append)
-    : out(filename, append ? std::ios::app : std::ios::trunc)
+    : filename(filename)
+    , out(filename, append ? std::ios::app : std::ios::trunc)
   {
     if (!out)
-      throw std::runtime_error("Output/Directory: cannot write '" + filename +
-                               "'");
+      throw std::runtime_error("Output/Directory: " + write_error(filename));
     if (!append)
-      out << header() << std::endl;
+      {
+        const std::string error =
+          append_or_roll_back(out, filename, header() + "\n");
+        if (!error.empty())
+          throw std::runtime_error(error);
+      }
   }
 
 
@@ -33,10 +40,11 @@ namespace densify
 
 
 
-  void
+  std::string
   StatisticsWriter::write(const StepStatistics &s)
   {
-    out << s.step << ',' << std::setprecision(10) << s.time << ','
+    std::ostringstream row;
+    row << s.step << ',' << std::setprecision(10) << s.time << ','
         << s.punch_displacement << ',' << s.upper_punch_force << ','
         << s.lower_punch_force << ',' << s.die_wall_force << ','
         << s.relative_density << ',' << s.newton_iterations << ','
@@ -49,6 +57,7 @@ namespace densify
         << s.cutbacks << ',' << std::setprecision(10)
         << s.particle_contact_force << ',' << s.contact_pairs << ','
         << s.slipping_points << ',' << s.upper_punch_friction << ','
-        << s.lower_punch_friction << ',' << s.pole_force << std::endl;
+        << s.lower_punch_friction << ',' << s.pole_force << '\n';
+    return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify
