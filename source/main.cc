@@ -9,6 +9,7 @@
 #include <densify/utilities.h>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <iomanip>
 #include <iostream>
@@ -111,7 +112,7 @@ main(int argc, char **argv)
   // leaves the others waiting in a collective operation: the rank that found
   // it reports it and ends every rank.
   const ErrorCommunicator error_comm;
-  auto                    stop = [&](const std::string &message, const int code) {
+  auto stop = [&](const std::string &message, const int code) {
     if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1 &&
         !all_ranks_arrive(error_comm.comm, 10.))
       {
@@ -203,7 +204,7 @@ main(int argc, char **argv)
       std::ostringstream what;
       what << scene.particles.size() << " particle(s), about "
            << format_count(estimate.elements) << " tetrahedra, "
-           << std::setprecision(2) << estimate.bytes / 1e9
+           << format_count(std::ceil(estimate.bytes / 1e8) / 10)
            << " GB of memory";
       if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&
           scene.upper_initial > parameters.tools.lower_position)

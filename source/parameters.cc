@@ -661,8 +661,8 @@ namespace densify
                 ((path[0] == "Time stepping" &&
                   Utilities::trim(entry.substr(0, eq)) ==
                     "Maximum cut-backs") ||
-                 (path[0] == "Mesh" && Utilities::trim(entry.substr(0, eq)) ==
-                                         "Maximum elements")))
+                 (path[0] == "Mesh" &&
+                  Utilities::trim(entry.substr(0, eq)) == "Maximum elements")))
               continue;
             for (const std::string &p : path)
               text << p << '/';

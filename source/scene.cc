@@ -338,10 +338,10 @@ namespace densify
   {
     // tetrahedra per volume of a mesh of size h: about 5.9 / h^3 (gmsh:
     // 1795 tetrahedra in a sphere of diameter 2.5 mm with h = 0.3 mm)
-    constexpr double density = 5.9;
-    const double     H       = prm.mesh.element_size;
-    const double     h_r = std::min(prm.mesh.refined_element_size, H);
-    const double     g   = prm.mesh.growth;
+    constexpr double density      = 5.9;
+    const double     H            = prm.mesh.element_size;
+    const double     h_r          = std::min(prm.mesh.refined_element_size, H);
+    const double     g            = prm.mesh.growth;
     unsigned int     n_directions = 0;
     try
       {
@@ -353,14 +353,14 @@ namespace densify
       {
         // reported where the mesh is built
       }
-    MeshEstimate            estimate;
+    MeshEstimate             estimate;
     std::map<double, double> per_diameter;
     for (const Particle &p : particles)
       {
         auto it = per_diameter.find(p.diameter);
         if (it == per_diameter.end())
           {
-            const double r = p.diameter / 2;
+            const double r      = p.diameter / 2;
             const double volume = 4. / 3. * numbers::PI * r * r * r;
             double       n      = density * volume / (H * H * H);
             if (n_directions > 0 && h_r < H)
@@ -397,7 +397,9 @@ namespace densify
   format_count(const double n)
   {
     std::ostringstream text;
-    if (n < 1e12)
+    if (n < 10 && n != std::round(n))
+      text << std::fixed << std::setprecision(1) << n;
+    else if (n < 1e12)
       text << std::llround(n);
     else
       text << std::setprecision(2) << n;
@@ -412,9 +414,8 @@ namespace densify
     if (estimate.elements > prm.mesh.max_elements)
       {
         std::ostringstream message;
-        message << "the scene needs about "
-                << format_count(estimate.elements) << " tetrahedra (about "
-                << std::setprecision(2) << estimate.bytes / 1e9
+        message << "the scene needs about " << format_count(estimate.elements)
+                << " tetrahedra (about " << format_count(estimate.bytes / 1e9)
                 << " GB of memory), more than Mesh/Maximum elements = "
                 << prm.mesh.max_elements
                 << ": raise Mesh/Element size (the count grows as its "

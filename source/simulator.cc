@@ -1408,9 +1408,9 @@ namespace densify
       }
     catch (const std::exception &)
       {
-        error = "graphics: " + write_error(dir + "solution_" +
-                                           Utilities::int_to_string(step, 5) +
-                                           ".*");
+        error =
+          "graphics: " + write_error(dir + "solution_" +
+                                     Utilities::int_to_string(step, 5) + ".*");
       }
     error = first_error(error, comm);
     if (!error.empty())
@@ -1528,33 +1528,43 @@ namespace densify
     const std::string  statistics_name =
       prm.output.directory + "/statistics.csv";
     const std::string particle_name = prm.output.directory + "/particles.csv";
+    // what rank 0 cannot write ends the run on every rank
+    std::string open_error;
     if (this_rank == 0)
-      {
-        const bool append = control.resume &&
-                            std::filesystem::exists(statistics_name) &&
-                            std::filesystem::exists(particle_name);
-        if (append)
-          {
-            truncate_rows(statistics_name, first_step - 1);
-            truncate_rows(particle_name, first_step - 1);
-          }
-        statistics_writer =
-          std::make_unique<StatisticsWriter>(statistics_name, append);
-        particle_file.open(particle_name,
-                           append ? std::ios::app : std::ios::trunc);
-        if (!append)
-          {
-            const std::string error = append_or_roll_back(
-              particle_file,
-              particle_name,
-              "step,particle,material,volume,initial_volume,"
-              "mean_displacement_x,mean_displacement_y,"
-              "mean_displacement_z,rotation_x,rotation_y,"
-              "rotation_z,contact_partners,die_contact\n");
-            if (!error.empty())
-              throw std::runtime_error(error);
-          }
-      }
+      try
+        {
+          const bool append = control.resume &&
+                              std::filesystem::exists(statistics_name) &&
+                              std::filesystem::exists(particle_name);
+          if (append)
+            {
+              truncate_rows(statistics_name, first_step - 1);
+              truncate_rows(particle_name, first_step - 1);
+            }
+          statistics_writer =
+            std::make_unique<StatisticsWriter>(statistics_name, append);
+          particle_file.open(particle_name,
+                             append ? std::ios::app : std::ios::trunc);
+          if (!append)
+            {
+              const std::string error = append_or_roll_back(
+                particle_file,
+                particle_name,
+                "step,particle,material,volume,initial_volume,"
+                "mean_displacement_x,mean_displacement_y,"
+                "mean_displacement_z,rotation_x,rotation_y,"
+                "rotation_z,contact_partners,die_contact\n");
+              if (!error.empty())
+                throw std::runtime_error(error);
+            }
+        }
+      catch (const std::exception &e)
+        {
+          open_error = e.what();
+        }
+    open_error = first_error(open_error, comm);
+    if (!open_error.empty())
+      throw std::runtime_error(open_error);
 
     const unsigned int n_steps = prm.time.n_steps;
     for (unsigned int step = first_step; step <= n_steps; ++step)
@@ -1628,15 +1638,15 @@ namespace densify
             // one row per particle and step
             std::ostringstream rows;
             for (unsigned int p = 0; p < particles.size(); ++p)
-              rows
-                << step << ',' << p << ',' << particles[p].material << ','
-                << std::setprecision(10) << measures[p].volume << ','
-                << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
-                << ',' << measures[p].mean_displacement[1] << ','
-                << measures[p].mean_displacement[2] << ','
-                << measures[p].rotation[0] << ',' << measures[p].rotation[1]
-                << ',' << measures[p].rotation[2] << ',' << partners[p] << ','
-                << (die_force[p] > 0 ? 1 : 0) << '\n';
+              rows << step << ',' << p << ',' << particles[p].material << ','
+                   << std::setprecision(10) << measures[p].volume << ','
+                   << initial_volumes[p] << ','
+                   << measures[p].mean_displacement[0] << ','
+                   << measures[p].mean_displacement[1] << ','
+                   << measures[p].mean_displacement[2] << ','
+                   << measures[p].rotation[0] << ',' << measures[p].rotation[1]
+                   << ',' << measures[p].rotation[2] << ',' << partners[p]
+                   << ',' << (die_force[p] > 0 ? 1 : 0) << '\n';
             write_failure =
               append_or_roll_back(particle_file, particle_name, rows.str());
           }

@@ -129,8 +129,9 @@ namespace densify
     for (const Point<3> &v : triangulation.get_vertices())
       header.vertices += v[0] + v[1] + v[2];
 
-    const fs::path file = fresh / ("rank_" + std::to_string(this_rank) + ".bin");
-    errno               = 0;
+    const fs::path file =
+      fresh / ("rank_" + std::to_string(this_rank) + ".bin");
+    errno = 0;
     try
       {
         std::ofstream out(file, std::ios::binary);
@@ -181,9 +182,9 @@ namespace densify
         const fs::path info_name = fresh / "info.txt";
         errno                    = 0;
         std::ofstream info(info_name);
-        info << "load step " << step << " of " << prm.time.n_steps
-             << ", time " << std::setprecision(10) << current_time
-             << ", written by " << header.n_ranks
+        info << "load step " << step << " of " << prm.time.n_steps << ", time "
+             << std::setprecision(10) << current_time << ", written by "
+             << header.n_ranks
              << " MPI rank(s); continue with: densify FILE.prm --resume\n";
         info.close();
         if (info.fail())
@@ -248,9 +249,9 @@ namespace densify
             " MPI rank(s), this run has " + std::to_string(n_ranks) +
             "; resume with mpirun -np " + std::to_string(n_files));
         throw InputError(
-        "--resume: no checkpoint '" + file.string() +
-        "' (Output/Directory holds none for this number of ranks); run "
-        "without --resume to start from the beginning");
+          "--resume: no checkpoint '" + file.string() +
+          "' (Output/Directory holds none for this number of ranks); run "
+          "without --resume to start from the beginning");
       }
 
     CheckpointHeader           header;
@@ -344,7 +345,8 @@ namespace densify
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none
     std::string error;
-    if (this_rank == 0 && (!pvd_records.empty() || fs::exists(dir / "solution.pvd")))
+    if (this_rank == 0 &&
+        (!pvd_records.empty() || fs::exists(dir / "solution.pvd")))
       {
         const fs::path tmp = dir / "solution.pvd.tmp";
         errno              = 0;

@@ -7,7 +7,7 @@ expect_error() {
   local name=$1 code=$2 pattern=$3
   shift 3
   local out rc ours
-  out=$(timeout 60 "$@" 2>&1 >/dev/null)
+  out=$(timeout -k 5 60 "$@" 2>&1 >/dev/null)
   rc=$?
   ours=$(printf '%s\n' "$out" | grep '^densify: ')
   if [ $rc -ne "$code" ] || [ "$(printf '%s\n' "$ours" | grep -c .)" -ne 1 ] ||
