@@ -202,10 +202,7 @@ main(int argc, char **argv)
       const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
       check_mesh_size(parameters, estimate);
       std::ostringstream what;
-      what << scene.particles.size() << " particle(s), about "
-           << format_count(estimate.elements) << " tetrahedra, "
-           << format_count(std::ceil(estimate.bytes / 1e8) / 10)
-           << " GB of memory";
+      what << scene.particles.size() << " particle(s)";
       if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&
           scene.upper_initial > parameters.tools.lower_position)
         what << ", relative density " << std::fixed << std::setprecision(2)
@@ -214,6 +211,9 @@ main(int argc, char **argv)
                                              scene.upper_initial -
                                                parameters.tools.lower_position)
              << " % of the die up to the upper punch (spheres)";
+      what << "; about " << format_count(estimate.elements) << " tetrahedra, "
+           << format_count(std::ceil(estimate.bytes / 1e8) / 10)
+           << " GB of memory";
       summary = what.str();
     }
   catch (const std::exception &e)

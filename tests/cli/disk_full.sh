@@ -8,8 +8,8 @@ set -u
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/expect_error.bash"
 prm="$SOURCE_DIR/prm/default.prm"
-scene=(--set "Time stepping/Number of steps=40" --set "Output/Interval=1"
-  --set "Output/Checkpoint interval=2"
+scene=(--set "Mesh/Element size=0.6" --set "Mesh/Refinement directions="
+  --set "Time stepping/Number of steps=40" --set "Output/Interval=1"
   --set "Tools/Upper punch/Displacement history=0:0, 1:0.2")
 
 # simulated: every write to statistics.csv fails with ENOSPC
@@ -54,18 +54,24 @@ if ! mount -t tmpfs -o size=1m tmpfs "$full" 2>/dev/null; then
   exit
 fi
 trap 'umount "$full" 2>/dev/null' EXIT
-for np in 1 2; do
+# with checkpoints (the disk fills while one is written), and with graphics
+# only (it fills while a .vtu is written)
+for case in "1 2" "2 2" "1 0" "2 0"; do
+  set -- $case
+  np=$1
+  every=(--set "Output/Checkpoint interval=$2")
   rm -rf "$full"/* resumed
   if [ $np -eq 1 ]; then
     launch=("$DENSIFY")
   else
     launch=("$MPIEXEC" --oversubscribe -np 2 "$DENSIFY")
   fi
-  expect_error "1 MB tmpfs, $np rank(s)" 1 "No space left on device" \
-    "${launch[@]}" "$prm" "${scene[@]}" --set "Output/Directory=$full/run"
+  expect_error "1 MB tmpfs, $np rank(s), checkpoint interval $2" 1 "No space left on device" \
+    "${launch[@]}" "$prm" "${scene[@]}" "${every[@]}" --set "Output/Directory=$full/run"
   grep -h "^densify: error" "$full"/run/log.txt 2>/dev/null | grep -q "$full/run/" ||
     echo "  (the log could not take the error line: the disk is full)"
   check_outputs "$full/run" || fails=$((fails + 1))
+  [ "$2" -eq 0 ] && continue
   # the last checkpoint continues elsewhere
   cp -r "$full/run" resumed
   if "${launch[@]}" "$prm" "${scene[@]}" --set "Output/Directory=resumed" \
