@@ -6,7 +6,8 @@
 #  2. a run killed after its checkpoint of step 3 and a few more steps is
 #     resumed: statistics.csv and particles.csv hold every step once, and
 #     solution.pvd every graphics step once, also when the resumed run
-#     writes no graphics.
+#     writes no graphics;
+#  3. --resume on 2 ranks from a 1-rank checkpoint names the rank counts.
 set -u
 cd "$WORK_DIR"
 rm -rf out a.log b.log c.log d.log
@@ -68,5 +69,11 @@ for f in files:
     assert os.path.exists(os.path.join(d, f)), f
 print("rows and graphics records: each step once")
 PY
+
+# 3. a checkpoint of one rank, resumed on two: the rank count is named
+rm -rf out
+"$DENSIFY" "$prm" "${scene[@]}" --stop-after 1 > e.log
+expect_error "--resume on 2 ranks from 1" 2 "written by 1 MPI rank(s), this run has 2; resume with mpirun -np 1" \
+  "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" "$prm" "${scene[@]}" --resume
 echo "$fails failure(s)"
 [ "$fails" -eq 0 ]
