@@ -1588,7 +1588,14 @@ namespace densify
             // keep it for a resumption with other solver settings
             if (step == first_step && current_time == 0)
               throw;
-            write_checkpoint(step - 1, wall_before + wall.wall_time());
+            try
+              {
+                write_checkpoint(step - 1, wall_before + wall.wall_time());
+              }
+            catch (const std::exception &c)
+              {
+                throw ConvergenceError(std::string(e.what()) + "; " + c.what());
+              }
             throw ConvergenceError(
               std::string(e.what()) + "; the last converged state (time " +
               Utilities::to_string(current_time) + " s) is in " +
