@@ -1144,7 +1144,8 @@ namespace densify
                      " cut-backs, the increment down to " +
                      std::to_string(dt / step_length) +
                      " of a step; raise Time stepping/Maximum cut-backs)" :
-                   ""));
+                   " (no cut-back tried: Time stepping/Maximum cut-backs = "
+                   "0)"));
             dt /= 2;
             ++cutbacks_in_a_row;
             ++s.cutbacks;
