@@ -1,7 +1,9 @@
 // Declaration, reading and overriding of Densify's parameters.
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <densify/ignored_parameters.h>
 #include <densify/parameters.h>
 #include <densify/utilities.h>
 
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -158,9 +161,9 @@ namespace densify
         "(finite-strain von Mises elastoplasticity, Simo 1992; "
         "doc/theory.md). The material of each particle (Sn, Fe, Cu, custom) "
         "gives E, nu and the yield stress. J2 plasticity needs Finite strain "
-        "= true; a single particle between punches is robust (poles held, "
-        "prm/single_sphere_sn.prm), assemblies of touching particles are "
-        "not yet (doc/roadmap.md).",
+        "= true and works for single particles and for layers of touching "
+        "particles in a die (prm/single_layer_sn.prm); elastic suits small "
+        "deformations and verification (prm/hertz.prm).",
         Patterns::Selection("elastic|J2 plasticity"));
       prm.add_parameter(
         "Finite strain",
@@ -203,6 +206,13 @@ namespace densify
                         "Poisson's ratio of the material 'custom' "
                         "(dimensionless, -1 < nu < 0.5).",
                         Patterns::Double(-0.999, 0.499));
+      prm.add_parameter(
+        "Density",
+        material.density,
+        "Mass density of the material 'custom', in t/mm^3 (7.29e-9 is tin); "
+        "used by Solver/Method = explicit only. The presets carry their own "
+        "values (doc/materials.md).",
+        Patterns::Double(1e-15, 1e-3));
     }
     prm.leave_subsection();
 
@@ -339,12 +349,11 @@ namespace densify
         "gmres-amg, gmres-lu or direct); false: only eps n n^T and the "
         "friction law's stiffness (symmetric without friction, CG works; "
         "Newton slows where contacts slide); auto: true for frictionless "
-        "particle contact unless the linear solver is cg-amg. With friction "
-        "it is measured both ways (doc/performance.md): the seven-sphere "
-        "layer needs 185 instead of 278 Newton iterations, but in the dense "
-        "late steps of the paper scene the exact tangent gives Newton steps "
-        "about 45 times too long and step 201 does not converge, so auto leaves "
-        "it off there. The converged answer is the same.",
+        "particle contact unless the linear solver is cg-amg, false with "
+        "friction (where it can overshoot in dense packings; "
+        "doc/performance.md). It changes how Newton converges, not the "
+        "converged answer. Change it when Newton stalls on sliding "
+        "contacts.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
@@ -407,6 +416,16 @@ namespace densify
 
     prm.enter_subsection("Solver");
     {
+      prm.add_parameter(
+        "Method",
+        solver.method,
+        "implicit: quasi-static equilibrium by Newton's method at every load "
+        "step (the entries below). explicit: central-difference dynamics "
+        "with a lumped mass, mass scaling and penalty contact over the same "
+        "element, material and contact law, no linear solve (subsection "
+        "Explicit; doc/theory.md); the load steps become the stations where "
+        "statistics, graphics and checkpoints are written.",
+        Patterns::Selection("implicit|explicit"));
       prm.add_parameter(
         "Linear solver",
         solver.linear_solver,
@@ -489,9 +508,68 @@ namespace densify
         "MUMPS, so that a run on several MPI ranks gives the same result "
         "every time; false: MUMPS works on all ranks, whose asynchronous "
         "scheduling changes the round-off from run to run (faster "
-        "factorizations; see doc/performance.md). No effect on one rank or "
-        "with the AMG solvers, which repeat exactly anyway.",
+        "factorizations on several ranks; doc/performance.md). No effect on "
+        "one rank or with the AMG solvers, which repeat exactly anyway.",
         Patterns::Bool());
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Explicit");
+    {
+      prm.add_parameter(
+        "Loading time",
+        explicit_dynamics.loading_time,
+        "Physical duration of the whole load history (Time stepping/End "
+        "time), in s (> 0). With mass scaling it only sets the units of the "
+        "scaled mass; with Mass scaling = none it sets the punch speed, so "
+        "that inertia enters (high-speed compaction).",
+        Patterns::Double(1e-12));
+      prm.add_parameter(
+        "Number of steps",
+        explicit_dynamics.n_steps,
+        "Explicit time steps over the whole load history when mass scaling "
+        "sets the step (>= 10). More steps: a slower load against the "
+        "particles' vibrations, so less kinetic energy and a result closer "
+        "to the quasi-static one, at proportional cost.",
+        Patterns::Integer(10));
+      prm.add_parameter(
+        "Mass scaling",
+        explicit_dynamics.mass_scaling,
+        "selective: the density of each element whose stable time step is "
+        "below the target step (Loading time / Number of steps) is raised "
+        "until it reaches it; uniform: every element's density by the one "
+        "factor the smallest element needs; none: physical densities, the "
+        "stable step sets the number of steps. The added mass is reported.",
+        Patterns::Selection("selective|uniform|none"));
+      prm.add_parameter(
+        "Time step safety",
+        explicit_dynamics.safety,
+        "Time step as a fraction of the stable step computed from the "
+        "elements and the contact springs (0 < s <= 2; above 1 the run is "
+        "expected to go unstable and is stopped with a message).",
+        Patterns::Double(1e-3, 2.));
+      prm.add_parameter(
+        "Ramp fraction",
+        explicit_dynamics.ramp_fraction,
+        "Fraction of the loading time over which the punch velocity rises "
+        "from zero along a smooth step (0 <= f < 1; 0: the punch starts at "
+        "full speed).",
+        Patterns::Double(0., 0.999));
+      prm.add_parameter(
+        "Damping ratio",
+        explicit_dynamics.damping_ratio,
+        "Mass-proportional damping, as a fraction of the critical damping of "
+        "a particle's lowest compression mode (0 <= z <= 1; 0: none). Its "
+        "work is reported in statistics.csv.",
+        Patterns::Double(0., 1.));
+      prm.add_parameter(
+        "Contact stiffness",
+        explicit_dynamics.contact_stiffness,
+        "Sets the contact penalty of explicit runs: the squared frequency of "
+        "the stiffest contact spring as this fraction of the elements' "
+        "largest one (> 0); the stable step includes the springs. Larger: "
+        "less penetration, smaller time steps.",
+        Patterns::Double(1e-6, 100.));
     }
     prm.leave_subsection();
 
@@ -622,6 +700,21 @@ namespace densify
         for (; depth > 0; --depth)
           prm.leave_subsection();
       }
+
+    // one warning line for each entry set in the file or by --set that the
+    // scene does not use
+    std::set<std::string> set = entries_set_in_file(filename);
+    for (const std::string &o : overrides)
+      {
+        std::string entry;
+        for (const std::string &part :
+             Utilities::split_string_list(o.substr(0, o.find('=')), '/'))
+          entry += (entry.empty() ? "" : "/") + part;
+        set.insert(entry);
+      }
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      for (const std::string &line : ignored_parameters(prm, set))
+        std::cerr << "densify: warning: " << line << std::endl;
   }
 
 
@@ -646,7 +739,11 @@ namespace densify
         else if (line == "end" && !path.empty())
           path.pop_back();
         else if (line.rfind("set ", 0) == 0 &&
-                 (path.empty() || (path[0] != "Output" && path[0] != "Solver")))
+                 (path.empty() ||
+                  (path[0] != "Output" &&
+                   (path[0] != "Solver" ||
+                    Utilities::trim(line.substr(4, line.find('=') - 4)) ==
+                      "Method"))))
           {
             const std::string entry = line.substr(4);
             const auto        eq    = entry.find('=');

@@ -203,7 +203,11 @@ namespace densify
                     false,
                     parallel::shared::Triangulation<3>::partition_metis)
     , dof_handler(triangulation)
-  {}
+  {
+    method = (parameters.solver.method == "explicit" ?
+                Method::explicit_dynamics :
+                Method::implicit);
+  }
 
 
 
@@ -338,6 +342,18 @@ namespace densify
         tool_laws.push_back(friction);
         tool_laws.back().mu = tool_friction[static_cast<unsigned>(tool.kind)];
       }
+    if (use_nodal_averaging(prm) && !nodal_averaging)
+      nodal_averaging = std::make_unique<NodalAveraging>(dof_handler, *mapping);
+    if (method == Method::explicit_dynamics)
+      {
+        if (prm.contact.hold_poles != "false")
+          throw InputError("Contact/Hold poles on axis holds free rigid-body "
+                           "modes for the implicit method; set it to false "
+                           "with Solver/Method = explicit");
+        // the penalty that fits the stable step of the lumped mass
+        penalty =
+          setup_explicit(any_friction ? friction.tangential_ratio : 0.);
+      }
     const Quadrature<2> contact_points = contact_quadrature(prm);
     tool_contact.setup(dof_handler, tools, tool_laws, penalty, contact_points);
     tool_contact.set_committed_solution(committed_ghosted);
@@ -352,7 +368,9 @@ namespace densify
         update_ghosts();
         particle_contact.update_search(solution_ghosted, search_margin);
       }
-    setup_matrix();
+    // explicit dynamics has no tangent and no linear solver
+    if (method == Method::implicit)
+      setup_matrix();
 
     // quadrature-point history only where a material needs it
     has_history = false;
@@ -373,6 +391,8 @@ namespace densify
     current_upper  = upper_initial;
     next_increment = prm.time.end_time / prm.time.n_steps;
 
+    if (method == Method::explicit_dynamics)
+      return;
     linear_solver =
       std::make_unique<LinearSolver>(linear_solver_type,
                                      prm.solver.linear_tolerance,
@@ -476,29 +496,10 @@ namespace densify
 
 
 
-  Simulator::AssemblyResult
-  Simulator::assemble(const bool   with_matrix,
-                      const double tangent_margin,
-                      const bool   search)
+  void
+  Simulator::assemble_internal(TrilinosWrappers::MPI::Vector &forces,
+                               const bool                     with_matrix)
   {
-    TimerOutput::Scope t(timer,
-                         with_matrix ? "Assembly: tangent+residual" :
-                                       "Assembly: residual");
-    update_ghosts();
-    if ((with_matrix || search) && has_particle_contact)
-      {
-        // refresh the particle contact search; new couplings need a new
-        // matrix pattern (without a tangent the next assembly with one
-        // repeats the search and finds them)
-        TimerOutput::Scope ts(timer, "Contact: search");
-        if (!particle_contact.update_search(solution_ghosted, search_margin) &&
-            with_matrix)
-          setup_matrix();
-      }
-    residual = 0;
-    if (with_matrix)
-      tangent = 0;
-
     const QGaussSimplex<3>               quadrature(prm.mesh.degree + 1);
     FEValues<3>                          fe_values(*mapping,
                           *fe,
@@ -527,8 +528,9 @@ namespace densify
                                   particle_material,
                                   has_history ? &committed_history : nullptr,
                                   has_history ? &trial_history : nullptr,
-                                  residual,
-                                  with_matrix ? &tangent : nullptr);
+                                  forces,
+                                  with_matrix ? &tangent : nullptr,
+                                  method == Method::explicit_dynamics);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!nodal_averaging && cell->is_locally_owned() &&
           material_failure.empty())
@@ -581,11 +583,11 @@ namespace densify
                     (A_grad[j][component[i]] * grad_phi[i]) * JxW;
             }
           cell->get_dof_indices(dofs);
-          residual.add(dofs, cell_residual);
+          forces.add(dofs, cell_residual);
           if (with_matrix)
             tangent.add(dofs, cell_matrix);
         }
-    residual.compress(VectorOperation::add);
+    forces.compress(VectorOperation::add);
     if (Utilities::MPI::max(material_failure.empty() ? 0 : 1, comm) > 0)
       {
         if (with_matrix)
@@ -596,8 +598,36 @@ namespace densify
                                     material_failure));
       }
 
+  }
+
+
+
+  Simulator::AssemblyResult
+  Simulator::assemble(const bool   with_matrix,
+                      const double tangent_margin,
+                      const bool   search)
+  {
+    TimerOutput::Scope t(timer,
+                         with_matrix ? "Assembly: tangent+residual" :
+                                       "Assembly: residual");
+    update_ghosts();
+    if ((with_matrix || search) && has_particle_contact)
+      {
+        // refresh the particle contact search; new couplings need a new
+        // matrix pattern (without a tangent the next assembly with one
+        // repeats the search and finds them)
+        TimerOutput::Scope ts(timer, "Contact: search");
+        if (!particle_contact.update_search(solution_ghosted, search_margin) &&
+            with_matrix)
+          setup_matrix();
+      }
+    residual = 0;
+    if (with_matrix)
+      tangent = 0;
+    assemble_internal(residual, with_matrix);
+
     if (body_force.norm() > 0)
-      add_body_force();
+      add_body_force(residual);
 
     AssemblyResult result;
     const double   internal_norm = residual.l2_norm();
@@ -639,7 +669,7 @@ namespace densify
 
 
   void
-  Simulator::add_body_force()
+  Simulator::add_body_force(TrilinosWrappers::MPI::Vector &forces)
   {
     const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
     FEValues<3>                      fe_values(*mapping,
@@ -661,9 +691,9 @@ namespace densify
               cell_residual(i) -=
                 (b * fe_values[u].value(i, q)) * fe_values.JxW(q);
           cell->get_dof_indices(dofs);
-          residual.add(dofs, cell_residual);
+          forces.add(dofs, cell_residual);
         }
-    residual.compress(VectorOperation::add);
+    forces.compress(VectorOperation::add);
   }
 
 
@@ -1026,17 +1056,7 @@ namespace densify
                              StepStatistics    &s)
   {
     const double upper = upper_punch_position(time);
-    load_time          = time;
-    tool_contact.set_tool_position(ToolKind::upper_punch, upper);
-    tool_contact.set_tool_translation(
-      ToolKind::upper_punch,
-      Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
-    // the arctangent law's slip scale: the threshold velocity times the
-    // increment's duration
-    const double regularisation =
-      prm.contact.slip_velocity * (time - current_time);
-    tool_contact.set_friction_regularisation(regularisation);
-    particle_contact.set_friction_regularisation(regularisation);
+    set_loads(time, time - current_time);
     const double punch_increment = std::abs(upper - current_upper);
     // predictor: extrapolate the last increment in proportion to the punch
     // travel
@@ -1495,9 +1515,15 @@ namespace densify
         pcout << ", plastic history";
       if (nodal_averaging)
         pcout << ", nodal-averaged F-bar (P1 locking remedy)";
-      pcout << "; linear solver " << linear_solver_type;
-      if (geometric_tangent)
-        pcout << ", geometric contact tangent";
+      if (method == Method::explicit_dynamics)
+        pcout << "; explicit dynamics (lumped mass, "
+              << prm.explicit_dynamics.mass_scaling << " mass scaling)";
+      else
+        {
+          pcout << "; linear solver " << linear_solver_type;
+          if (geometric_tangent)
+            pcout << ", geometric contact tangent";
+        }
       pcout << std::endl;
     }
 
@@ -1525,6 +1551,26 @@ namespace densify
       initial_volumes.push_back(m.volume);
     // a resumed run continues after the checkpoint's step, appending to the
     // files' rows up to that step
+    if (method == Method::explicit_dynamics)
+      {
+        // at rest at the start (or at the checkpoint's state, which
+        // read_checkpoint() then restores)
+        const double dt = explicit_dynamics->start(
+          *this, solution, prm.explicit_dynamics.mass_scaling != "none");
+        const auto [low, high] = std::minmax_element(explicit_penalty.begin(),
+                                                     explicit_penalty.end());
+        pcout << "Explicit dynamics: time step " << std::setprecision(4) << dt
+              << " s (stable " << explicit_dynamics->stable_step()
+              << " s), about "
+              << static_cast<unsigned long long>(
+                   prm.explicit_dynamics.loading_time / dt + 0.5)
+              << " steps; added mass " << std::setprecision(3)
+              << 100. * lumped_mass->added_mass_fraction()
+              << " %; contact penalty " << std::setprecision(4) << *low;
+        if (*high > *low)
+          pcout << " - " << *high;
+        pcout << " MPa/mm" << std::endl;
+      }
     const unsigned int first_step = control.resume ? read_checkpoint() + 1 : 1;
     const std::string  statistics_name =
       prm.output.directory + "/statistics.csv";
@@ -1581,7 +1627,9 @@ namespace densify
         ContactResults results;
         try
           {
-            results = advance_to(time, step, s);
+            results = method == Method::explicit_dynamics ?
+                        advance_explicit(time, step, s) :
+                        advance_to(time, step, s);
           }
         catch (const ConvergenceError &e)
           {
@@ -1659,6 +1707,24 @@ namespace densify
               append_or_roll_back(particle_file, particle_name, rows.str());
           }
         s.relative_density = density(s.particle_volume, upper);
+        s.plastic_work     = plastic_work();
+        if (method == Method::explicit_dynamics)
+          {
+            const ExplicitDynamics::Account &a = explicit_account;
+            s.explicit_steps                   = a.steps;
+            s.time_step                        = a.step;
+            s.kinetic_energy                   = a.kinetic;
+            s.internal_work                    = a.internal;
+            s.damping_work                     = a.damping;
+            s.friction_work                    = explicit_work.friction;
+            s.contact_energy                   = explicit_work.contact_energy;
+            s.external_work     = explicit_work.tools + explicit_work.body;
+            s.added_mass        = lumped_mass->added_mass_fraction();
+            s.energy_balance    = s.external_work -
+                               (s.kinetic_energy + s.internal_work +
+                                s.damping_work + s.friction_work +
+                                s.contact_energy);
+          }
 
         if (prm.output.interval > 0 &&
             (step % prm.output.interval == 0 || step == n_steps))
@@ -1686,12 +1752,23 @@ namespace densify
         if (has_density)
           pcout << "  density " << std::setprecision(4)
                 << 100 * s.relative_density << " %";
-        pcout << "  newton " << s.newton_iterations << " (cg "
-              << s.linear_iterations << ", aug " << s.augmentations;
-        if (s.cutbacks > 0)
-          pcout << ", " << s.cutbacks << " cut-back(s), " << s.increments
-                << " increments";
-        pcout << ")  " << format_seconds(s.wall_seconds) << ", ~"
+        if (method == Method::explicit_dynamics)
+          pcout << "  explicit " << s.increments << " steps (dt "
+                << std::setprecision(3) << s.time_step << " s)  KE/IE "
+                << std::setprecision(2)
+                << 100. * s.kinetic_energy /
+                     std::max(s.internal_work, 1e-300)
+                << " %";
+        else
+          {
+            pcout << "  newton " << s.newton_iterations << " (cg "
+                  << s.linear_iterations << ", aug " << s.augmentations;
+            if (s.cutbacks > 0)
+              pcout << ", " << s.cutbacks << " cut-back(s), " << s.increments
+                    << " increments";
+            pcout << ")";
+          }
+        pcout << "  " << format_seconds(s.wall_seconds) << ", ~"
               << format_seconds(left) << " left" << std::endl;
 
         // stop on request (every rank must agree) or write the periodic

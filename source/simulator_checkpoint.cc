@@ -33,7 +33,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 1;
+    constexpr unsigned int checkpoint_version = 2;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -162,6 +162,16 @@ namespace densify
             archive &header &last_step &current_time &current_upper
               &next_increment &last_punch_increment &wall &solution_values
                 &increment_values &history &tools &contacts &pvd_records;
+            // explicit dynamics: the integrator, the loads' account and the
+            // mass-scaling factors
+            ExplicitDynamics::State dynamics;
+            std::vector<double>     factors;
+            if (explicit_dynamics)
+              {
+                dynamics = explicit_dynamics->state();
+                factors  = lumped_mass->scaling_factors();
+              }
+            archive &dynamics &explicit_work &factors;
           }
           // complete on disk only once the stream is flushed and closed
           out.close();
@@ -261,6 +271,8 @@ namespace densify
     std::vector<MaterialState> history;
     ToolContact::State         tools;
     ParticleContact::State     contacts;
+    ExplicitDynamics::State    dynamics;
+    std::vector<double>        factors;
     try
       {
         boost::archive::binary_iarchive archive(in);
@@ -301,7 +313,8 @@ namespace densify
                            "without --resume");
         archive &step &current_time &current_upper &next_increment
           &last_punch_increment &wall &solution_values &increment_values
-            &history &tools &contacts &pvd_records;
+            &history &tools &contacts &pvd_records &dynamics &explicit_work
+              &factors;
       }
     catch (const InputError &)
       {
@@ -340,7 +353,20 @@ namespace densify
       {
         // the search of the loaded configuration, and its matrix pattern
         particle_contact.update_search(solution_ghosted, search_margin);
-        setup_matrix();
+        if (method == Method::implicit)
+          setup_matrix();
+      }
+    if (explicit_dynamics)
+      {
+        if (dynamics.velocity.size() != locally_owned.n_elements() ||
+            factors.size() != triangulation.n_active_cells())
+          throw InputError("--resume: the checkpoint was written by an "
+                           "implicit run; resume it with Solver/Method = "
+                           "implicit");
+        explicit_dynamics->set_state(dynamics);
+        lumped_mass->set_scaling_factors(factors);
+        search_solution = solution;
+        body_solution   = solution;
       }
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none

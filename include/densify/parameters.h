@@ -85,6 +85,8 @@ namespace densify
     double youngs_modulus = 43120.;
     /// Poisson's ratio of "custom" (-).
     double poissons_ratio = 0.3;
+    /// Mass density of the material 'custom' (t/mm^3; 7.29e-9 is tin).
+    double density = 7.29e-9;
   };
 
   /// Subsection "Tools": the rigid upper punch, lower punch and die wall.
@@ -165,6 +167,9 @@ namespace densify
   /// Subsection "Solver": Newton, linear solver and stabilisation.
   struct SolverParameters
   {
+    /// "implicit" (quasi-static Newton per load step) or "explicit"
+    /// (central differences with a lumped mass, subsection Explicit).
+    std::string method = "implicit";
     /// "auto" (gmres-amg where friction acts with the consistent tangent,
     /// cg-amg otherwise), "cg-amg", "gmres-amg" or "direct" (MUMPS).
     std::string linear_solver = "auto";
@@ -191,6 +196,33 @@ namespace densify
     /// The direct solvers factorize on rank 0 alone, so that runs on several
     /// ranks repeat exactly.
     bool reproducible = true;
+  };
+
+  /// Subsection "Explicit": the explicit integrator (Solver/Method =
+  /// explicit).
+  struct ExplicitParameters
+  {
+    /// Physical duration of the whole load history (s).
+    double loading_time = 1.;
+    /// Explicit steps over the whole load history, when mass scaling sets
+    /// the time step (Mass scaling = uniform or selective).
+    unsigned int n_steps = 20000;
+    /// "selective" (only elements whose stable step is below the target),
+    /// "uniform" (every element by one factor) or "none" (physical density;
+    /// the stable step sets the number of steps).
+    std::string mass_scaling = "selective";
+    /// Time step as a fraction of the computed stable step (and the bound
+    /// the mass scaling keeps).
+    double safety = 0.9;
+    /// Fraction of the loading time over which the punch velocity rises
+    /// smoothly from zero.
+    double ramp_fraction = 0.05;
+    /// Mass-proportional damping as a fraction of the critical damping of
+    /// a particle's lowest compression mode.
+    double damping_ratio = 0.;
+    /// Contact springs' squared frequency against the elements' largest one
+    /// (sets the contact penalty; the stable step accounts for it).
+    double contact_stiffness = 0.25;
   };
 
   /// Subsection "Output": where and what to write.
@@ -223,12 +255,15 @@ namespace densify
     TimeParameters time;
     /// Subsection "Solver".
     SolverParameters solver;
+    /// Subsection "Explicit".
+    ExplicitParameters explicit_dynamics;
     /// Subsection "Output".
     OutputParameters output;
 
     /**
      * Every entry that shapes the scene (all but subsections Output and
-     * Solver, which say how to write and how to solve it), one
+     * Solver, which say how to write and how to solve it; Solver/Method is
+     * kept, since the two methods' states differ), one
      * "Subsection/Name = value" per line, as read_parameters() leaves them.
      * A checkpoint stores it and --resume refuses a different one. Empty
      * unless set (then nothing is checked).

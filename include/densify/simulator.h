@@ -16,8 +16,10 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <densify/assembly/lumped_mass.h>
 #include <densify/contact/particle_contact.h>
 #include <densify/contact/tool_contact.h>
+#include <densify/drivers/explicit_dynamics.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
@@ -57,9 +59,10 @@ namespace densify
    * for the tool contact. Writes statistics.csv, log.txt and graphics into
    * the output directory. Every MPI rank holds the whole mesh
    * (parallel::shared::Triangulation, METIS partition) and assembles its own
-   * cells.
+   * cells. With Solver/Method = explicit the same system is integrated by
+   * ExplicitDynamics between the load steps (source/simulator_explicit.cc).
    */
-  class Simulator
+  class Simulator : private ExplicitSystem
   {
   public:
     /// Prepare a run: create the output directory and its log.txt (nothing
@@ -211,6 +214,13 @@ namespace densify
     /// couplings), the tangent and the stabilisation matrix.
     void
     setup_matrix();
+
+    /// Internal forces at solution_ghosted added into @p forces (and their
+    /// tangent into the tangent matrix if @p with_matrix), compressed.
+    /// Throws std::runtime_error on a material failure (on every rank).
+    void
+    assemble_internal(TrilinosWrappers::MPI::Vector &forces,
+                      const bool                     with_matrix);
 
     /// Residual (and tangent if @p with_matrix) at the current solution;
     /// @p tangent_margin as in ToolContact::assemble(). The particle contact
@@ -383,9 +393,88 @@ namespace densify
     Tensor<1, 3>                           body_force;
     std::vector<std::pair<double, double>> body_force_table;
     double                                 load_time = 0.;
-    /// Add -int b . phi to the residual (only called if b != 0).
+    /// Add -int b . phi to @p forces (only called if b != 0).
     void
-    add_body_force();
+    add_body_force(TrilinosWrappers::MPI::Vector &forces);
+
+    /// How the load steps are solved (Solver/Method, resolved once).
+    enum class Method
+    {
+      implicit,
+      explicit_dynamics
+    } method;
+
+    /**
+     * Explicit dynamics: the lumped mass, the integrator and the contact
+     * penalty that fits its stable step; returns the penalty per particle.
+     * @p tangential_ratio as for LumpedMass.
+     */
+    std::vector<double>
+    setup_explicit(const double tangential_ratio);
+
+    /// The explicit counterpart of advance_to(): integrate to @p time (the
+    /// end of load step @p step); forces are the means over the interval.
+    ContactResults
+    advance_explicit(const double time, const unsigned int step, StepStatistics &s);
+
+    // ExplicitSystem
+    double
+    update_mass(const double                   required_step,
+                TrilinosWrappers::MPI::Vector &mass) override;
+    void
+    forces(const TrilinosWrappers::MPI::Vector &u,
+           const double                         scene_time,
+           const double                         scene_increment,
+           const double                         dt,
+           TrilinosWrappers::MPI::Vector       &internal,
+           TrilinosWrappers::MPI::Vector       &external) override;
+    double
+    external_work() const override
+    {
+      return explicit_work.tools + explicit_work.body;
+    }
+
+    /// Set the tools and the body force for scene time @p time and the
+    /// friction regularisation for the increment @p increment.
+    void
+    set_loads(const double time, const double increment);
+
+    /// Plastic work of the committed history (mJ), on every rank.
+    double
+    plastic_work() const;
+
+    std::unique_ptr<LumpedMass>       lumped_mass;
+    /// The explicit run's contact penalty per particle (MPa/mm).
+    std::vector<double>               explicit_penalty;
+    std::unique_ptr<ExplicitDynamics> explicit_dynamics;
+    /// Energy account of the explicit run kept by the system (mJ): work of
+    /// the moving tools and of the body force, friction work, and the
+    /// contact springs' elastic energy now.
+    struct ExplicitWork
+    {
+      double tools = 0., body = 0., friction = 0., contact_energy = 0.;
+      /// Upper punch force and position, friction and lateral position at
+      /// the last evaluation (for the trapezoidal tool work).
+      double       upper_force = 0., upper_position = 0., lateral = 0.;
+      Tensor<1, 3> upper_friction;
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int /*version*/)
+      {
+        archive &tools &body &friction &contact_energy &upper_force
+          &upper_position &lateral &upper_friction;
+      }
+    } explicit_work;
+    /// Time-weighted sums of the contact results over the current interval
+    /// between stations, and the weight.
+    ContactResults interval_sum;
+    double         interval_weight = 0.;
+    /// Body force vector of the last evaluation and the displacement then
+    /// (body work); the displacement at the last contact search.
+    TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;
+    /// The explicit run's last station account.
+    ExplicitDynamics::Account explicit_account;
     /// Sideways upper punch displacement against time.
     std::vector<std::pair<double, double>> lateral_table;
     /// Friction coefficient of each tool, by ToolKind.

@@ -412,7 +412,8 @@ namespace densify
     const std::vector<MaterialState>                   *committed,
     std::vector<MaterialState>                         *trial,
     TrilinosWrappers::MPI::Vector                      &residual,
-    TrilinosWrappers::SparseMatrix                     *tangent)
+    TrilinosWrappers::SparseMatrix                     *tangent,
+    const bool                                          shared_corners)
   {
     const Tensor<2, 3> I = unit_symmetric_tensor<3>();
     // scatter the blocks through their placement in the tangent's pattern
@@ -494,6 +495,14 @@ namespace densify
         X_prime.fill(0.);
         // the corners' sums of w gamma and of w p
         double gamma_sum = 0., p_sum = 0.;
+        // one return mapping per cell: the deviator of the first corner's
+        // Kirchhoff stress, shared by all four (see the declaration)
+        double       p_dummy;
+        const bool   shared = shared_corners && tangent == nullptr && finite &&
+                            material.kirchhoff_pressure(1., p_dummy);
+        Tensor<2, 3> tau_dev, F_inv_T;
+        if (shared)
+          F_inv_T = transpose(invert(s.F));
         for (unsigned int v = 0; v < 4; ++v)
           {
             const unsigned int a = c.vertex[v];
@@ -513,20 +522,40 @@ namespace densify
                 N     = I;
               }
             const std::size_t k = std::size_t(e) * 4 + v;
-            try
+            if (shared && v > 0)
               {
-                const MaterialState *old =
-                  committed ? &(*committed)[k] : nullptr;
-                MaterialState *now = trial ? &(*trial)[k] : nullptr;
-                if (tangent != nullptr)
-                  material.evaluate(F_bar, old, now, P, A);
-                else
-                  material.stress(F_bar, old, now, P);
+                // tau = dev tau + p(j_a) I, P = tau Fbar^-T
+                double p_a;
+                material.kirchhoff_pressure(j_bar[a], p_a);
+                Tensor<2, 3> tau = tau_dev;
+                for (unsigned int d = 0; d < 3; ++d)
+                  tau[d][d] += p_a;
+                P = (1. / sc) * tau * F_inv_T;
+                if (trial)
+                  (*trial)[k] = (*trial)[k - v];
               }
-            catch (const std::exception &error)
-              {
-                return error.what();
-              }
+            else
+              try
+                {
+                  const MaterialState *old =
+                    committed ? &(*committed)[k] : nullptr;
+                  MaterialState *now = trial ? &(*trial)[k] : nullptr;
+                  if (tangent != nullptr)
+                    material.evaluate(F_bar, old, now, P, A);
+                  else
+                    material.stress(F_bar, old, now, P);
+                  if (shared)
+                    {
+                      tau_dev = P * transpose(F_bar);
+                      const double p_0 = trace(tau_dev) / 3.;
+                      for (unsigned int d = 0; d < 3; ++d)
+                        tau_dev[d][d] -= p_0;
+                    }
+                }
+              catch (const std::exception &error)
+                {
+                  return error.what();
+                }
             // p: Kirchhoff pressure of Fbar (finite) or tr P / 3
             const double p = sc * scalar_product(P, N) / 3.;
             for (unsigned int i = 0; i < 12; ++i)

@@ -654,8 +654,22 @@ namespace densify
                 if (out.new_traction != nullptr && friction_on)
                   {
                     (*out.new_traction)[idx] = r.traction;
+                    const Tensor<1, 3> slip = delta - (delta * n) * n;
                     if (r.status == ContactStatus::slip)
-                      (*out.new_slip)[idx] += (delta - (delta * n) * n).norm();
+                      (*out.new_slip)[idx] += slip.norm();
+                    // the traction t = -eps_t s_e opposes the slip beyond
+                    // the spring's elastic slip s_e (the arctangent law has
+                    // no spring: all slip work is dissipated)
+                    result.friction_work -=
+                      weight *
+                      (r.traction *
+                       (friction.model == FrictionModel::coulomb ?
+                          Tensor<1, 3>(slip + (r.traction -
+                                               committed_traction[idx]) /
+                                                (friction.tangential_ratio *
+                                                 eps)) :
+                          slip)) *
+                      JxW;
                   }
                 result.max_penetration = std::max(result.max_penetration, -g);
                 const bool predicted =
@@ -679,6 +693,14 @@ namespace densify
                         if (friction_on && r.status == ContactStatus::slip)
                           ++result.n_slip;
                         result.normal_force += weight * p * JxW;
+                        result.elastic_energy +=
+                          weight * 0.5 *
+                          (p * p + (friction_on && friction.model ==
+                                                     FrictionModel::coulomb ?
+                                      r.traction.norm_square() /
+                                        friction.tangential_ratio :
+                                      0.)) /
+                          eps * JxW;
                         result.friction_force +=
                           weight * r.traction.norm() * JxW;
                         p_out      = p;
@@ -815,6 +837,8 @@ namespace densify
     result.normal_force    = Utilities::MPI::sum(result.normal_force, comm);
     result.friction_force  = Utilities::MPI::sum(result.friction_force, comm);
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
+    result.friction_work   = Utilities::MPI::sum(result.friction_work, comm);
+    result.elastic_energy  = Utilities::MPI::sum(result.elastic_energy, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
@@ -893,6 +917,33 @@ namespace densify
     loop(mapping, solution, out);
     committed_traction.swap(new_traction);
     accumulated_slip.swap(new_slip);
+  }
+
+
+
+  ParticleContactResult
+  ParticleContact::assemble_and_commit(
+    const Mapping<3>                    &mapping,
+    const TrilinosWrappers::MPI::Vector &solution,
+    TrilinosWrappers::MPI::Vector       &residual)
+  {
+    Outputs out;
+    out.residual = &residual;
+    std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
+    std::vector<double>       new_slip = accumulated_slip;
+    const bool                friction_on = friction.mu > 0.;
+    if (friction_on)
+      {
+        out.new_traction = &new_traction;
+        out.new_slip     = &new_slip;
+      }
+    const ParticleContactResult result = loop(mapping, solution, out);
+    if (friction_on)
+      {
+        committed_traction.swap(new_traction);
+        accumulated_slip.swap(new_slip);
+      }
+    return result;
   }
 
 

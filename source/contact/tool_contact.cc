@@ -235,8 +235,24 @@ namespace densify
                 if (out.new_traction != nullptr && rough)
                   {
                     (*out.new_traction)[idx] = r.traction;
+                    const Tensor<1, 3> slip = delta - (delta * n) * n;
                     if (r.status == ContactStatus::slip)
-                      (*out.new_slip)[idx] += (delta - (delta * n) * n).norm();
+                      (*out.new_slip)[idx] += slip.norm();
+                    // the traction t = -eps_t s_e opposes the slip beyond
+                    // the spring's elastic slip s_e (the arctangent law has
+                    // no spring: all slip work is dissipated)
+                    const bool spring =
+                      friction_laws[t].model == FrictionModel::coulomb;
+                    result.friction_work -=
+                      (r.traction *
+                       (spring ?
+                          Tensor<1, 3>(slip + (r.traction -
+                                               committed_traction[idx]) /
+                                                (friction_laws[t]
+                                                   .tangential_ratio *
+                                                 eps)) :
+                          slip)) *
+                      JxW;
                   }
                 result.max_penetration = std::max(result.max_penetration, -g);
                 const bool predicted =
@@ -279,6 +295,14 @@ namespace densify
                 if (r.status == ContactStatus::slip && rough)
                   ++result.n_slip;
                 const unsigned int kind = static_cast<unsigned int>(tool.kind);
+                result.elastic_energy +=
+                  0.5 *
+                  (p * p +
+                   (rough && friction_laws[t].model == FrictionModel::coulomb ?
+                      r.traction.norm_square() /
+                        friction_laws[t].tangential_ratio :
+                      0.)) /
+                  eps * JxW;
                 result.normal_force[kind] += p * JxW;
                 result.axial_force[kind] += traction[2] * JxW;
                 result.friction_force[kind] += r.traction * JxW;
@@ -367,6 +391,8 @@ namespace densify
           Utilities::MPI::sum(result.friction_force[t], comm);
       }
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
+    result.friction_work   = Utilities::MPI::sum(result.friction_work, comm);
+    result.elastic_energy  = Utilities::MPI::sum(result.elastic_energy, comm);
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
@@ -428,6 +454,32 @@ namespace densify
         accumulated_slip.swap(new_slip);
       }
     committed_shift = shift;
+  }
+
+
+
+  ToolContactResult
+  ToolContact::assemble_and_commit(const Mapping<3> &mapping,
+                                   const TrilinosWrappers::MPI::Vector &solution,
+                                   TrilinosWrappers::MPI::Vector &residual)
+  {
+    Outputs out;
+    out.residual = &residual;
+    std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
+    std::vector<double>       new_slip = accumulated_slip;
+    if (has_friction())
+      {
+        out.new_traction = &new_traction;
+        out.new_slip     = &new_slip;
+      }
+    const ToolContactResult result = loop(mapping, solution, out);
+    if (has_friction())
+      {
+        committed_traction.swap(new_traction);
+        accumulated_slip.swap(new_slip);
+      }
+    committed_shift = shift;
+    return result;
   }
 
 

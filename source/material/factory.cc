@@ -15,8 +15,9 @@ namespace densify
       {
         j2.E      = prm.youngs_modulus;
         j2.nu     = prm.poissons_ratio;
-        j2.sigma0 = prm.yield_stress;
-        j2.label  = name;
+        j2.sigma0  = prm.yield_stress;
+        j2.density = prm.density;
+        j2.label   = name;
       }
     else
       try
@@ -38,7 +39,7 @@ namespace densify
           throw std::runtime_error(
             "Material/Finite strain = false needs Material/Model = elastic: "
             "J2 plasticity is implemented at finite strain only");
-        return std::make_shared<LinearElastic>(j2.E, j2.nu, name);
+        return std::make_shared<LinearElastic>(j2.E, j2.nu, name, j2.density);
       }
     if (prm.model == "elastic")
       j2.sigma0 = std::numeric_limits<double>::infinity();

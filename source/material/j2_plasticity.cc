@@ -52,6 +52,8 @@ namespace densify
         p.E      = 43120.;
         p.nu     = 0.3;
         p.sigma0 = 31.;
+        // beta tin at room temperature, 7.29 g/cm^3 (CRC Handbook)
+        p.density = 7.29e-9;
       }
     else if (name == "Fe")
       {
@@ -64,6 +66,8 @@ namespace densify
         p.E      = 211000.;
         p.nu     = 0.29;
         p.sigma0 = 50.;
+        // 7.874 g/cm^3 (CRC Handbook)
+        p.density = 7.874e-9;
       }
     else if (name == "Cu")
       {
@@ -76,6 +80,8 @@ namespace densify
         p.E      = 117000.;
         p.nu     = 0.34;
         p.sigma0 = 33.;
+        // 8.96 g/cm^3 (CRC Handbook)
+        p.density = 8.96e-9;
       }
     else if (name == "custom")
       throw std::invalid_argument(
@@ -139,6 +145,28 @@ namespace densify
           return parameters.sigma0 + parameters.K * std::pow(e, parameters.n);
       }
     return parameters.sigma0;
+  }
+
+
+
+  double
+  J2Plasticity::plastic_work(const MaterialState &state) const
+  {
+    // int_0^e sigma_y: isotropic hardening, so the Kirchhoff stress power
+    // tau : d_p per reference volume is sigma_y d(eps_p)
+    const double e = std::max(state.eps_p, 0.);
+    switch (parameters.hardening)
+      {
+        case Hardening::none:
+          return parameters.sigma0 * e;
+        case Hardening::linear:
+          return parameters.sigma0 * e + 0.5 * parameters.H * e * e;
+        case Hardening::power_law:
+          return parameters.sigma0 * e + parameters.K *
+                                           std::pow(e, parameters.n + 1.) /
+                                           (parameters.n + 1.);
+      }
+    return parameters.sigma0 * e;
   }
 
 

@@ -5,11 +5,13 @@ namespace densify
 {
   LinearElastic::LinearElastic(const double       E,
                                const double       nu,
-                               const std::string &label)
+                               const std::string &label,
+                               const double       density)
     : E(E)
     , nu(nu)
     , lambda(E * nu / ((1. + nu) * (1. - 2. * nu)))
     , mu(E / (2. * (1. + nu)))
+    , rho(density)
     , label(label)
   {
     for (unsigned int i = 0; i < 3; ++i)

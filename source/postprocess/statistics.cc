@@ -35,7 +35,10 @@ namespace densify
            "stabilisation_force,max_penetration,augmentations,"
            "particle_volume,step_seconds,increments,cutbacks,"
            "particle_contact_force,contact_pairs,slipping_points,"
-           "upper_punch_friction,lower_punch_friction,pole_force";
+           "upper_punch_friction,lower_punch_friction,pole_force,plastic_work,"
+           "explicit_steps,time_step,added_mass,kinetic_energy,internal_work,"
+           "friction_work,damping_work,contact_energy,external_work,"
+           "energy_balance";
   }
 
 
@@ -57,7 +60,12 @@ namespace densify
         << s.cutbacks << ',' << std::setprecision(10)
         << s.particle_contact_force << ',' << s.contact_pairs << ','
         << s.slipping_points << ',' << s.upper_punch_friction << ','
-        << s.lower_punch_friction << ',' << s.pole_force << '\n';
+        << s.lower_punch_friction << ',' << s.pole_force << ','
+        << s.plastic_work << ',' << s.explicit_steps << ',' << s.time_step
+        << ',' << s.added_mass << ',' << s.kinetic_energy << ','
+        << s.internal_work << ',' << s.friction_work << ',' << s.damping_work
+        << ',' << s.contact_energy << ',' << s.external_work << ','
+        << s.energy_balance << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

@@ -73,6 +73,13 @@ namespace densify
      * (index active_cell_index * 4 + vertex), or are nullptr. Returns an
      * empty string, or the message of the first material failure (e.g. an
      * inverted element); then the caller must not use the result.
+     *
+     * With @p shared_corners (residual only, finite strain, laws with
+     * Material::kirchhoff_pressure()) the return mapping runs once per cell
+     * at its first corner: the corners' Fbar differ by a volume factor only,
+     * so they share the deviatoric stress and the updated state, and each
+     * corner gets its own pressure. Exact when the four committed corner
+     * states are equal, as this mode leaves them.
      */
     std::string
     assemble(const TrilinosWrappers::MPI::Vector                &solution,
@@ -80,7 +87,8 @@ namespace densify
              const std::vector<MaterialState>                   *committed,
              std::vector<MaterialState>                         *trial,
              TrilinosWrappers::MPI::Vector                      &residual,
-             TrilinosWrappers::SparseMatrix                     *tangent);
+             TrilinosWrappers::SparseMatrix                     *tangent,
+             const bool shared_corners = false);
 
     /**
      * The vertex averages j_a = sum_f V_f j_f / sum_f V_f of the volume

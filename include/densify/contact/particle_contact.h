@@ -41,6 +41,10 @@ namespace densify
     unsigned int n_active = 0, n_slip = 0;
     /// Number of candidate particle pairs of the broad phase.
     unsigned int n_candidate_pairs = 0;
+    /// Friction work of the increment, as ToolContactResult::friction_work.
+    double friction_work = 0.;
+    /// Elastic energy of the springs, as ToolContactResult::elastic_energy.
+    double elastic_energy = 0.;
   };
 
   /**
@@ -181,6 +185,12 @@ namespace densify
     ParticleContactResult
     evaluate(const Mapping<3>                    &mapping,
              const TrilinosWrappers::MPI::Vector &solution) const;
+
+    /// As ToolContact::assemble_and_commit().
+    ParticleContactResult
+    assemble_and_commit(const Mapping<3>                    &mapping,
+                        const TrilinosWrappers::MPI::Vector &solution,
+                        TrilinosWrappers::MPI::Vector       &residual);
 
     /// lambda <- max(0, lambda - eps g).
     void

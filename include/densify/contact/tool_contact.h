@@ -39,6 +39,15 @@ namespace densify
     unsigned int n_active = 0;
     /// Number of them that slip (with friction).
     unsigned int n_slip = 0;
+    /// Work the friction tractions dissipated in the increment since the
+    /// last commit (mJ = N mm): -t . (slip + change of t/eps_t), the slip
+    /// beyond the stick spring's; computed by commit() and
+    /// assemble_and_commit() only.
+    double friction_work = 0.;
+    /// Elastic energy of the penalty springs now (mJ): 1/2 (p^2 / eps +
+    /// |t|^2 / eps_t) over the contact points (the stored energy of pure
+    /// penalty contact, without multipliers).
+    double elastic_energy = 0.;
   };
 
   /**
@@ -158,6 +167,17 @@ namespace densify
     ToolContactResult
     evaluate(const Mapping<3>                    &mapping,
              const TrilinosWrappers::MPI::Vector &solution) const;
+
+    /**
+     * assemble() without a tangent and commit() in one pass: add the contact
+     * forces at @p solution to @p residual and accept @p solution as the
+     * start of the next increment (explicit dynamics, where every step is
+     * accepted). The result carries the friction work of the increment.
+     */
+    ToolContactResult
+    assemble_and_commit(const Mapping<3>                    &mapping,
+                        const TrilinosWrappers::MPI::Vector &solution,
+                        TrilinosWrappers::MPI::Vector       &residual);
 
     /// lambda <- max(0, lambda - eps g) at every quadrature point.
     void

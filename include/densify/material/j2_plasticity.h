@@ -41,6 +41,8 @@ namespace densify
     double n = 1.;
     /// Hardening law.
     Hardening hardening = Hardening::none;
+    /// Mass density (t/mm^3; 0: none given, explicit dynamics refuses it).
+    double density = 0.;
     /// Short name shown in the log, e.g. "Sn".
     std::string label;
   };
@@ -133,6 +135,32 @@ namespace densify
     {
       return parameters.E;
     }
+
+    /// K + 4/3 mu (MPa).
+    double
+    p_wave_modulus() const override
+    {
+      return kappa + 4. / 3. * mu;
+    }
+
+    /// The mass density (t/mm^3).
+    double
+    density() const override
+    {
+      return parameters.density;
+    }
+
+    /// Hencky's K ln J; true.
+    bool
+    kirchhoff_pressure(const double J, double &p) const override
+    {
+      p = kappa * std::log(J);
+      return true;
+    }
+
+    /// The integral of sigma_y from 0 to the state's eps_p (MPa).
+    double
+    plastic_work(const MaterialState &state) const override;
 
     /// The parameters this law was constructed with.
     const J2Parameters &

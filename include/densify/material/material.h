@@ -102,6 +102,38 @@ namespace densify
     /// Young's modulus (MPa), used to scale penalties and stabilisation.
     virtual double
     youngs_modulus() const = 0;
+
+    /// P-wave modulus lambda + 2 mu of the elastic response (MPa): with the
+    /// density it gives the dilatational wave speed, hence the stable time
+    /// step of explicit dynamics.
+    virtual double
+    p_wave_modulus() const = 0;
+
+    /// Mass density (t/mm^3); 0 if none was given.
+    virtual double
+    density() const = 0;
+
+    /**
+     * For laws whose Kirchhoff stress splits into a pressure of J alone and
+     * a deviator of the isochoric part of F and the history, with isochoric
+     * plastic flow (then corners of a cell that differ only in their volume
+     * ratio share the deviator and the updated state): set @p p to the
+     * Kirchhoff pressure at volume ratio @p J (MPa) and return true. Other
+     * laws return false.
+     */
+    virtual bool
+    kirchhoff_pressure(const double /*J*/, double & /*p*/) const
+    {
+      return false;
+    }
+
+    /// Plastic work per unit reference volume dissipated to reach the state
+    /// @p state (MPa = mJ/mm^3); 0 for laws without plasticity.
+    virtual double
+    plastic_work(const MaterialState & /*state*/) const
+    {
+      return 0.;
+    }
   };
 
   /**
@@ -112,8 +144,11 @@ namespace densify
   {
   public:
     /// @p E Young's modulus (MPa), @p nu Poisson's ratio, @p label shown in the
-    /// log.
-    LinearElastic(const double E, const double nu, const std::string &label);
+    /// log, @p density the mass density (t/mm^3).
+    LinearElastic(const double       E,
+                  const double       nu,
+                  const std::string &label,
+                  const double       density = 0.);
 
     std::string
     name() const override;
@@ -143,8 +178,20 @@ namespace densify
       return E;
     }
 
+    double
+    p_wave_modulus() const override
+    {
+      return lambda + 2. * mu;
+    }
+
+    double
+    density() const override
+    {
+      return rho;
+    }
+
   private:
-    const double      E, nu, lambda, mu;
+    const double      E, nu, lambda, mu, rho;
     const std::string label;
     Tensor<4, 3>      C;
   };

@@ -59,6 +59,20 @@ namespace densify
     /// l2 norm of the horizontal forces of the pole springs (N; 0 unless
     /// Contact/Hold poles on axis).
     double pole_force = 0.;
+    /// Plastic work of the particles so far (mJ).
+    double plastic_work = 0.;
+    /// Explicit dynamics (0 for implicit runs): explicit steps since the
+    /// start, the last time step (s), the added mass over the physical mass.
+    unsigned long long explicit_steps = 0;
+    double             time_step = 0., added_mass = 0.;
+    /// Explicit dynamics' energy account (mJ; 0 for implicit runs): kinetic
+    /// energy, work of the internal forces (elastic energy + plastic work),
+    /// friction and damping work, elastic energy of the contact springs,
+    /// work of the moving tools and body forces, and the balance
+    /// external - (kinetic + internal + friction + damping + contact).
+    double kinetic_energy = 0., internal_work = 0., friction_work = 0.,
+           damping_work = 0., contact_energy = 0., external_work = 0.,
+           energy_balance = 0.;
   };
 
   /**

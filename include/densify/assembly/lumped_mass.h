@@ -1,0 +1,144 @@
+// The lumped mass of explicit dynamics, its mass scaling, the stable time
+// step and the contact penalty that fits it.
+#pragma once
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <densify/material/material.h>
+
+#include <memory>
+#include <vector>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /// How explicit dynamics raises densities to reach a target time step.
+  enum class MassScaling
+  {
+    /// Physical densities.
+    none,
+    /// Every element by the one factor the smallest stable step needs.
+    uniform,
+    /// Each element only as far as its own stable step needs.
+    selective
+  };
+
+  /**
+   * Row-sum lumped mass of linear tetrahedra (V_e rho_e f_e / 4 on each
+   * corner and component, f_e the mass-scaling factor of the cell) and the
+   * stable time step of central differences with it.
+   *
+   * The stable step of a cell is bounded from below by
+   * dt_e = 1 / (c_e sqrt(G_e)), with c_e = sqrt(M_e / (rho_e f_e)) the
+   * dilatational wave speed (M_e = lambda + 2 mu) and G_e = sum_a |grad N_a|^2
+   * in the current configuration: for any corner displacements v,
+   * eps:D:eps <= M_e |v|^2 G_e, so the largest eigenvalue of
+   * M_lumped^-1 K_e is at most 4 c_e^2 G_e, and the largest frequency of the
+   * mesh at most that of its stiffest cell (doc/theory.md). The contact
+   * springs add omega_c^2 = 2 r eps A_i / m_i at a surface vertex i (A_i its
+   * share of the surface, r = max(1, tangential / normal penalty)); the
+   * stable step is 2 / sqrt(omega_e,max^2 + omega_c,max^2).
+   *
+   * Works on the locally owned cells of a parallel::shared triangulation;
+   * every query returns the same value on every rank.
+   */
+  class LumpedMass
+  {
+  public:
+    /**
+     * @p materials by cell material id (particle); @p tangential_ratio the
+     * friction's tangential over normal penalty (0 without friction).
+     * Throws std::runtime_error if the element is not linear or a material
+     * has no density.
+     */
+    LumpedMass(const DoFHandler<3>                                &dof_handler,
+               const std::vector<std::shared_ptr<const Material>> &materials,
+               const MassScaling                                   scaling,
+               const double tangential_ratio);
+
+    /**
+     * At displacement @p u (with the values of every DoF of the locally
+     * owned cells) recompute each cell's stable step and, with mass scaling,
+     * raise the scaling factors (never lower them) so that the stable step
+     * of the whole mesh with its contact springs is at least
+     * @p required_step; then write the lumped mass into @p mass (locally
+     * owned entries). Returns the stable step (s).
+     */
+    double
+    update(const TrilinosWrappers::MPI::Vector &u,
+           const double                         required_step,
+           TrilinosWrappers::MPI::Vector       &mass);
+
+    /**
+     * The contact penalty (MPa/mm) of each particle that makes the stiffest
+     * contact spring's squared frequency @p stiffness times the cells'
+     * largest one, with the mass of the last update(). Later updates
+     * include these springs in the stable step.
+     */
+    std::vector<double>
+    contact_penalties(const double stiffness);
+
+    /// Added mass over physical mass of the whole mesh (0 without scaling).
+    double
+    added_mass_fraction() const
+    {
+      return added_fraction;
+    }
+
+    /// Total mass (t).
+    double
+    total_mass() const
+    {
+      return mass_total;
+    }
+
+    /// The lowest compression-mode frequency pi c / D over the particles
+    /// (rad/s), with the scaled mass: the reference of the damping ratio.
+    double
+    lowest_frequency(const std::vector<double> &diameters) const;
+
+    /// Mass-scaling factor of each cell (by active cell index; 1 on cells
+    /// owned elsewhere), for checkpoints.
+    const std::vector<double> &
+    scaling_factors() const
+    {
+      return factor;
+    }
+
+    /// Restore factors saved from scaling_factors() (same mesh).
+    void
+    set_scaling_factors(const std::vector<double> &saved)
+    {
+      factor = saved;
+    }
+
+  private:
+    const DoFHandler<3>                                *dof_handler;
+    /// The locally owned DoFs.
+    const IndexSet                                      owned;
+    const std::vector<std::shared_ptr<const Material>> &materials;
+    const MassScaling                                   scaling;
+    /// max(1, tangential / normal penalty).
+    const double spring_ratio;
+    /// Per active cell: mass-scaling factor, and the stable step with
+    /// factor 1 at the last update.
+    std::vector<double> factor, step_unscaled;
+    /// Share of the surface area of each vertex DoF (component 0; mm^2).
+    TrilinosWrappers::MPI::Vector area;
+    /// The lumped mass of the last update.
+    TrilinosWrappers::MPI::Vector last_mass;
+    /// Contact penalty per particle (empty until contact_penalties()).
+    std::vector<double> penalty;
+    double              added_fraction = 0., mass_total = 0.;
+    /// Per particle: total scaled mass and the mass-weighted mean of
+    /// M / (rho f), the squared wave speed.
+    std::vector<double> particle_mass, particle_wave_speed2;
+
+    /// Largest squared contact-spring frequency with the mass @p mass.
+    double
+    contact_frequency2(const TrilinosWrappers::MPI::Vector &mass) const;
+  };
+} // namespace densify

@@ -1,0 +1,280 @@
+// The lumped mass of explicit dynamics, its mass scaling, the stable time
+// step and the contact penalty that fits it.
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <densify/assembly/lumped_mass.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace densify
+{
+  namespace
+  {
+    /// Volume and sum of the squared shape gradients of a linear tetrahedron
+    /// with corners @p x.
+    std::pair<double, double>
+    tetrahedron_measures(const std::array<Point<3>, 4> &x)
+    {
+      Tensor<2, 3> J;
+      for (unsigned int d = 0; d < 3; ++d)
+        for (unsigned int e = 0; e < 3; ++e)
+          J[e][d] = x[d + 1][e] - x[0][e];
+      const double det = determinant(J);
+      if (!(det > 0.))
+        return {det / 6., std::numeric_limits<double>::infinity()};
+      // grad N_a = J^-T grad_ref N_a, grad_ref N_0 = -(1,1,1)
+      const Tensor<2, 3> J_inv_T = transpose(invert(J));
+      double             G       = 0.;
+      Tensor<1, 3>       g0;
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          Tensor<1, 3> e;
+          e[a]                 = 1.;
+          const Tensor<1, 3> g = J_inv_T * e;
+          G += g.norm_square();
+          g0 -= g;
+        }
+      return {det / 6., G + g0.norm_square()};
+    }
+  } // namespace
+
+
+
+  LumpedMass::LumpedMass(
+    const DoFHandler<3>                                &dof_handler,
+    const std::vector<std::shared_ptr<const Material>> &materials,
+    const MassScaling                                   scaling,
+    const double                                        tangential_ratio)
+    : dof_handler(&dof_handler)
+    , owned(dof_handler.locally_owned_dofs())
+    , materials(materials)
+    , scaling(scaling)
+    , spring_ratio(std::max(1., tangential_ratio))
+    , factor(dof_handler.get_triangulation().n_active_cells(), 1.)
+    , step_unscaled(factor.size(), std::numeric_limits<double>::infinity())
+  {
+    if (dof_handler.get_fe().degree != 1)
+      throw std::runtime_error(
+        "Solver/Method = explicit needs Mesh/Polynomial degree = 1 (the "
+        "row-sum lumped mass of quadratic tetrahedra has negative corner "
+        "masses)");
+    for (const auto &m : materials)
+      if (!(m->density() > 0.))
+        throw std::runtime_error(
+          "Solver/Method = explicit needs a mass density: set "
+          "Material/Density for the material 'custom'");
+
+    // each vertex's share of the particle surface (a third of each
+    // boundary triangle), on the reference configuration
+    const MPI_Comm comm = dof_handler.get_communicator();
+    area.reinit(owned, comm);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const auto         face = cell->face(f);
+              const Tensor<1, 3> n =
+                cross_product_3d(face->vertex(1) - face->vertex(0),
+                                 face->vertex(2) - face->vertex(0));
+              for (unsigned int v = 0; v < 3; ++v)
+                {
+                  // the face's vertex as a vertex of the cell, for its DoF
+                  for (const unsigned int w : cell->vertex_indices())
+                    if (cell->vertex_index(w) == face->vertex_index(v))
+                      area(cell->vertex_dof_index(w, 0)) += n.norm() / 6.;
+                }
+            }
+    area.compress(VectorOperation::add);
+  }
+
+
+
+  double
+  LumpedMass::update(const TrilinosWrappers::MPI::Vector &u,
+                     const double                         required_step,
+                     TrilinosWrappers::MPI::Vector       &mass)
+  {
+    const MPI_Comm     comm    = dof_handler->get_communicator();
+    const unsigned int n_parts = materials.size();
+    // 1. the unscaled stable step of every owned cell in the current
+    //    configuration
+    std::vector<double> volume(factor.size(), 0.);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::array<Point<3>, 4> x;
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              x[v] = cell->vertex(v);
+              for (unsigned int c = 0; c < 3; ++c)
+                x[v][c] += u(cell->vertex_dof_index(v, c));
+            }
+          const auto [V, G]      = tetrahedron_measures(x);
+          const Material    &m   = *materials[cell->material_id()];
+          const unsigned int e   = cell->active_cell_index();
+          const double       c2  = m.p_wave_modulus() / m.density();
+          step_unscaled[e]       = 1. / std::sqrt(c2 * G);
+          volume[e]              = cell->measure();
+        }
+
+    // 2. the contact springs' share: with omega_c^2 = kappa omega_e^2 the
+    //    stable step is the elements' one over sqrt(1 + kappa); with mass
+    //    scaling the factors then follow from the elements alone
+    //    (omega_c^2 falls with the mass as omega_e^2 does)
+    double min_unscaled = std::numeric_limits<double>::infinity();
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int e = cell->active_cell_index();
+          min_unscaled = std::min(min_unscaled,
+                                  step_unscaled[e] * std::sqrt(factor[e]));
+        }
+    min_unscaled = Utilities::MPI::min(min_unscaled, comm);
+    double spring_share = 1.;
+    if (!penalty.empty() && last_mass.size() > 0)
+      {
+        const double omega_e2 = 4. / (min_unscaled * min_unscaled);
+        spring_share = 1. + contact_frequency2(last_mass) / omega_e2;
+      }
+    if (scaling != MassScaling::none && required_step > 0.)
+      {
+        // each cell's stable step needs to reach required_step * share
+        const double target = required_step * std::sqrt(spring_share);
+        double       needed = 1.;
+        for (const auto &cell : dof_handler->active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int e = cell->active_cell_index();
+              const double       r = target / step_unscaled[e];
+              needed               = std::max(needed, r * r);
+              if (scaling == MassScaling::selective)
+                factor[e] = std::max(factor[e], r * r);
+            }
+        if (scaling == MassScaling::uniform)
+          {
+            needed = Utilities::MPI::max(needed, comm);
+            for (const auto &cell : dof_handler->active_cell_iterators())
+              if (cell->is_locally_owned())
+                factor[cell->active_cell_index()] =
+                  std::max(factor[cell->active_cell_index()], needed);
+          }
+      }
+
+    // 3. the lumped mass and the measures of the scaled mesh
+    mass.reinit(owned, comm);
+    double              physical = 0., scaled = 0.;
+    double              min_step = std::numeric_limits<double>::infinity();
+    std::vector<double> part_mass(n_parts, 0.), part_c2(n_parts, 0.);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int e   = cell->active_cell_index();
+          const unsigned int p   = cell->material_id();
+          const Material    &m   = *materials[p];
+          const double       m_e = m.density() * factor[e] * volume[e];
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < 3; ++c)
+              mass(cell->vertex_dof_index(v, c)) += m_e / 4.;
+          physical += m.density() * volume[e];
+          scaled += m_e;
+          part_mass[p] += m_e;
+          part_c2[p] += m_e * m.p_wave_modulus() / (m.density() * factor[e]);
+          min_step = std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
+        }
+    mass.compress(VectorOperation::add);
+    physical = Utilities::MPI::sum(physical, comm);
+    scaled   = Utilities::MPI::sum(scaled, comm);
+    min_step = Utilities::MPI::min(min_step, comm);
+    Utilities::MPI::sum(part_mass, comm, part_mass);
+    Utilities::MPI::sum(part_c2, comm, part_c2);
+    particle_mass        = part_mass;
+    particle_wave_speed2 = part_c2;
+    for (unsigned int p = 0; p < n_parts; ++p)
+      if (part_mass[p] > 0.)
+        particle_wave_speed2[p] /= part_mass[p];
+    added_fraction = scaled / physical - 1.;
+    mass_total     = scaled;
+    last_mass      = mass;
+
+    const double omega_e2 = 4. / (min_step * min_step);
+    const double omega_c2 = penalty.empty() ? 0. : contact_frequency2(mass);
+    return 2. / std::sqrt(omega_e2 + omega_c2);
+  }
+
+
+
+  double
+  LumpedMass::contact_frequency2(const TrilinosWrappers::MPI::Vector &mass) const
+  {
+    // per surface vertex 2 r eps_p A_i / m_i, the largest over the mesh
+    double omega2 = 0.;
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const types::global_dof_index i = cell->vertex_dof_index(v, 0);
+            if (!owned.is_element(i) || area(i) == 0.)
+              continue;
+            omega2 = std::max(omega2,
+                              2. * spring_ratio *
+                                penalty[cell->material_id()] * area(i) /
+                                mass(i));
+          }
+    return Utilities::MPI::max(omega2, dof_handler->get_communicator());
+  }
+
+
+
+  std::vector<double>
+  LumpedMass::contact_penalties(const double stiffness)
+  {
+    Assert(last_mass.size() > 0, ExcMessage("update() first"));
+    const MPI_Comm comm = dof_handler->get_communicator();
+    // the elements' largest squared frequency, and per particle the largest
+    // A_i / m_i of its surface vertices
+    double              min_step = std::numeric_limits<double>::infinity();
+    std::vector<double> ratio(materials.size(), 0.);
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int e = cell->active_cell_index();
+          min_step = std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const types::global_dof_index i = cell->vertex_dof_index(v, 0);
+              if (owned.is_element(i))
+                ratio[cell->material_id()] =
+                  std::max(ratio[cell->material_id()], area(i) / last_mass(i));
+            }
+        }
+    min_step = Utilities::MPI::min(min_step, comm);
+    Utilities::MPI::max(ratio, comm, ratio);
+    const double omega_e2 = 4. / (min_step * min_step);
+    penalty.assign(materials.size(), 0.);
+    for (unsigned int p = 0; p < materials.size(); ++p)
+      if (ratio[p] > 0.)
+        penalty[p] = stiffness * omega_e2 / (2. * spring_ratio * ratio[p]);
+    return penalty;
+  }
+
+
+
+  double
+  LumpedMass::lowest_frequency(const std::vector<double> &diameters) const
+  {
+    double omega = std::numeric_limits<double>::infinity();
+    for (unsigned int p = 0; p < diameters.size() && p < particle_mass.size();
+         ++p)
+      if (particle_mass[p] > 0.)
+        omega = std::min(omega,
+                         numbers::PI * std::sqrt(particle_wave_speed2[p]) /
+                           diameters[p]);
+    return omega;
+  }
+} // namespace densify

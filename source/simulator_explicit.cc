@@ -1,0 +1,257 @@
+// The Simulator as the system of the explicit integrator: lumped mass,
+// forces without a tangent, and the energy account of the loads.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <densify/simulator.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace densify
+{
+  std::vector<double>
+  Simulator::setup_explicit(const double tangential_ratio)
+  {
+    const std::string &scaling = prm.explicit_dynamics.mass_scaling;
+    lumped_mass                = std::make_unique<LumpedMass>(
+      dof_handler,
+      particle_material,
+      scaling == "none"    ? MassScaling::none :
+      scaling == "uniform" ? MassScaling::uniform :
+                             MassScaling::selective,
+      tangential_ratio);
+    explicit_dynamics = std::make_unique<ExplicitDynamics>(
+      prm.explicit_dynamics, prm.time.end_time, comm);
+    // the mass (scaled for the target step), then the contact penalty that
+    // fits the elements' stable step
+    const bool scaled = (scaling != "none");
+    const double required =
+      scaled ? prm.explicit_dynamics.loading_time /
+                 prm.explicit_dynamics.n_steps / prm.explicit_dynamics.safety :
+               0.;
+    TrilinosWrappers::MPI::Vector mass;
+    update_ghosts();
+    lumped_mass->update(solution_ghosted, required, mass);
+    explicit_penalty =
+      lumped_mass->contact_penalties(prm.explicit_dynamics.contact_stiffness);
+    std::vector<double> diameters;
+    for (const Particle &p : particles)
+      diameters.push_back(p.diameter);
+    explicit_dynamics->set_damping(2. * prm.explicit_dynamics.damping_ratio *
+                                   lumped_mass->lowest_frequency(diameters));
+    search_solution.reinit(locally_owned, comm);
+    body_forces.reinit(locally_owned, comm);
+    body_solution.reinit(locally_owned, comm);
+    return explicit_penalty;
+  }
+
+
+
+  double
+  Simulator::update_mass(const double                   required_step,
+                         TrilinosWrappers::MPI::Vector &mass)
+  {
+    TimerOutput::Scope t(timer, "Explicit: mass");
+    update_ghosts();
+    return lumped_mass->update(solution_ghosted, required_step, mass);
+  }
+
+
+
+  void
+  Simulator::set_loads(const double time, const double increment)
+  {
+    const double upper = upper_punch_position(time);
+    load_time          = time;
+    tool_contact.set_tool_position(ToolKind::upper_punch, upper);
+    tool_contact.set_tool_translation(
+      ToolKind::upper_punch,
+      Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
+    // the arctangent law's slip scale: the threshold velocity times the
+    // increment's duration
+    const double regularisation = prm.contact.slip_velocity * increment;
+    tool_contact.set_friction_regularisation(regularisation);
+    particle_contact.set_friction_regularisation(regularisation);
+  }
+
+
+
+  void
+  Simulator::forces(const TrilinosWrappers::MPI::Vector &u,
+                    const double                         scene_time,
+                    const double                         scene_increment,
+                    const double                         dt,
+                    TrilinosWrappers::MPI::Vector       &internal,
+                    TrilinosWrappers::MPI::Vector       &external)
+  {
+    set_loads(scene_time, scene_increment);
+    if (&u != &solution)
+      solution = u;
+    update_ghosts();
+    if (has_particle_contact)
+      {
+        // a new search once two points may have closed by more than its
+        // margin since the last one (each moved at most max |u - u_search|)
+        double moved = 0.;
+        for (unsigned int i = 0; i < solution.locally_owned_size(); ++i)
+          moved = std::max(moved,
+                           std::abs(solution.begin()[i] -
+                                    search_solution.begin()[i]));
+        if (Utilities::MPI::max(moved, comm) * 2. * std::sqrt(3.) >
+            search_margin)
+          {
+            TimerOutput::Scope ts(timer, "Contact: search");
+            particle_contact.update_search(solution_ghosted, search_margin);
+            search_solution = solution;
+          }
+      }
+    {
+      TimerOutput::Scope ti(timer, "Explicit: internal forces");
+      internal = 0.;
+      assemble_internal(internal, false);
+      // every explicit step is accepted
+      if (has_history)
+        committed_history.swap(trial_history);
+    }
+
+    TimerOutput::Scope tc(timer, "Explicit: contact and loads");
+    external = 0.;
+    double body_work = 0.;
+    if (body_force.norm() > 0)
+      {
+        // trapezoidal work of the body force over the step
+        const TrilinosWrappers::MPI::Vector old_forces = body_forces;
+        body_forces                                    = 0.;
+        add_body_force(body_forces);
+        for (unsigned int i = 0; i < solution.locally_owned_size(); ++i)
+          {
+            const double du =
+              solution.begin()[i] - body_solution.begin()[i];
+            body_work -=
+              (old_forces.begin()[i] + body_forces.begin()[i]) / 2. * du;
+          }
+        external += body_forces;
+        body_solution = solution;
+      }
+    ContactResults contact;
+    contact.tools =
+      tool_contact.assemble_and_commit(*mapping, solution_ghosted, external);
+    if (has_particle_contact)
+      contact.particles = particle_contact.assemble_and_commit(*mapping,
+                                                               solution_ghosted,
+                                                               external);
+    external.compress(VectorOperation::add);
+
+    // the account of the loads: work of the moving upper punch (its normal
+    // force along its travel, its friction along its lateral motion)
+    const unsigned int upper = static_cast<unsigned int>(ToolKind::upper_punch);
+    const double       position = upper_punch_position(scene_time);
+    const double       lateral  = interpolate(lateral_table, scene_time);
+    if (scene_increment > 0.)
+      {
+        explicit_work.tools +=
+          (explicit_work.upper_force + contact.tools.normal_force[upper]) / 2. *
+            (explicit_work.upper_position - position) +
+          (explicit_work.upper_friction[0] +
+           contact.tools.friction_force[upper][0]) /
+            2. * (lateral - explicit_work.lateral);
+        explicit_work.body += Utilities::MPI::sum(body_work, comm);
+      }
+    explicit_work.upper_force    = contact.tools.normal_force[upper];
+    explicit_work.upper_friction = contact.tools.friction_force[upper];
+    explicit_work.upper_position = position;
+    explicit_work.lateral        = lateral;
+    explicit_work.friction +=
+      contact.tools.friction_work + contact.particles.friction_work;
+    explicit_work.contact_energy =
+      contact.tools.elastic_energy + contact.particles.elastic_energy;
+    // friction measures the slip of the next step from here
+    committed_ghosted = solution_ghosted;
+
+    // time-weighted sums for the means over the interval
+    ContactResults &sum = interval_sum;
+    for (unsigned int k = 0; k < n_tool_kinds; ++k)
+      {
+        sum.tools.normal_force[k] += dt * contact.tools.normal_force[k];
+        sum.tools.axial_force[k] += dt * contact.tools.axial_force[k];
+        sum.tools.friction_force[k] += dt * contact.tools.friction_force[k];
+      }
+    sum.particles.normal_force += dt * contact.particles.normal_force;
+    sum.particles.friction_force += dt * contact.particles.friction_force;
+    sum.tools.max_penetration =
+      std::max(sum.tools.max_penetration, contact.tools.max_penetration);
+    sum.particles.max_penetration =
+      std::max(sum.particles.max_penetration,
+               contact.particles.max_penetration);
+    sum.tools.n_active     = contact.tools.n_active;
+    sum.tools.n_slip       = contact.tools.n_slip;
+    sum.particles.n_active = contact.particles.n_active;
+    sum.particles.n_slip   = contact.particles.n_slip;
+    interval_weight += dt;
+  }
+
+
+
+  Simulator::ContactResults
+  Simulator::advance_explicit(const double       time,
+                              const unsigned int step,
+                              StepStatistics    &s)
+  {
+    (void)step;
+    interval_sum    = ContactResults();
+    interval_weight = 0.;
+    explicit_account = explicit_dynamics->advance(*this, solution, time);
+    current_time     = time;
+    current_upper    = upper_punch_position(time);
+    update_ghosts();
+    s.increments = explicit_account.interval_steps;
+
+    // the means over the interval
+    ContactResults mean = interval_sum;
+    const double   w    = interval_weight > 0. ? 1. / interval_weight : 0.;
+    for (unsigned int k = 0; k < n_tool_kinds; ++k)
+      {
+        mean.tools.normal_force[k] *= w;
+        mean.tools.axial_force[k] *= w;
+        mean.tools.friction_force[k] *= w;
+      }
+    mean.particles.normal_force *= w;
+    mean.particles.friction_force *= w;
+    return mean;
+  }
+
+
+
+  double
+  Simulator::plastic_work() const
+  {
+    if (!has_history)
+      return 0.;
+    // the integration weights of the history slots: V/4 at the corners of
+    // the nodal-averaged F-bar, else the quadrature weights
+    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
+    FEValues<3> fe_values(*mapping, *fe, quadrature, update_JxW_values);
+    double      work = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Material    &m = *particle_material[cell->material_id()];
+          const std::size_t  k0 =
+            std::size_t(cell->active_cell_index()) * history_per_cell;
+          if (nodal_averaging)
+            for (unsigned int q = 0; q < 4; ++q)
+              work += cell->measure() / 4. * m.plastic_work(committed_history[k0 + q]);
+          else
+            {
+              fe_values.reinit(cell);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                work += fe_values.JxW(q) *
+                        m.plastic_work(committed_history[k0 + q]);
+            }
+        }
+    return Utilities::MPI::sum(work, comm);
+  }
+} // namespace densify
