@@ -32,7 +32,7 @@ expect_error "zero refinement direction" 2 "Mesh/Refinement directions" \
 printf '\xef\xbb\xbfsubsection Particles\n  set Centres = 0,0,1.25\nend\n' > bom.prm
 out=$("$DENSIFY" --validate bom.prm 2>&1)
 rc=$?
-if [ $rc -ne 0 ]; then
+if [ $rc -ne 0 ] || printf '%s' "$out" | grep -q "densify: "; then
   echo "FAIL byte-order mark: exit $rc: $out"
   fails=$((fails + 1))
 else
