@@ -17,8 +17,11 @@ namespace densify
       return entries;
     std::vector<std::string> path;
     std::string              line;
-    while (std::getline(in, line))
+    for (bool first = true; std::getline(in, line); first = false)
       {
+        // a UTF-8 byte-order mark, as read_parameters() skips it
+        if (first && line.rfind("\xEF\xBB\xBF", 0) == 0)
+          line.erase(0, 3);
         // a '\' at the end joins the next line, as in deal.II
         while (!line.empty() && line.back() == '\\')
           {

@@ -8,12 +8,15 @@
 #include <densify/simulator.h>
 #include <densify/utilities.h>
 
+#include <chrono>
+#include <cmath>
 #include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -33,7 +36,8 @@ namespace
     "Options of a run: --stop-after N stops after load step N with a "
     "checkpoint (as SIGINT or SIGTERM does after the current step); "
     "--resume continues from Output/Directory/checkpoint/ with the same "
-    "parameters and number of ranks.\n"
+    "parameters and number of ranks (a run without --resume removes the "
+    "checkpoint of an earlier run in its directory).\n"
     "--set overrides an entry of FILE.prm (repeatable); nested subsections "
     "are separated by '/', e.g.\n"
     "  densify prm/hertz.prm --set \"Tools/Upper punch/Displacement "
@@ -52,6 +56,43 @@ namespace
     stop_requested = 1;
     std::signal(signal_number, SIG_DFL);
   }
+
+  /// Whether every rank of @p comm reaches this call within @p seconds: a
+  /// non-blocking barrier on a communicator used for nothing else, so that it
+  /// cannot match a collective operation another rank waits in.
+  bool
+  all_ranks_arrive(const MPI_Comm comm, const double seconds)
+  {
+    MPI_Request request;
+    MPI_Ibarrier(comm, &request);
+    const auto start = std::chrono::steady_clock::now();
+    for (;;)
+      {
+        int done = 0;
+        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+        if (done != 0)
+          return true;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                          start)
+              .count() > seconds)
+          return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+  }
+
+  /// MPI_COMM_WORLD duplicated for all_ranks_arrive(), freed at the end.
+  struct ErrorCommunicator
+  {
+    ErrorCommunicator()
+    {
+      MPI_Comm_dup(MPI_COMM_WORLD, &comm);
+    }
+    ~ErrorCommunicator()
+    {
+      MPI_Comm_free(&comm);
+    }
+    MPI_Comm comm;
+  };
 } // namespace
 
 int
@@ -59,11 +100,27 @@ main(int argc, char **argv)
 {
   using namespace densify;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-  auto       fail = [&](const std::string &message, const int code) {
+  const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const bool         root = rank == 0;
+  auto               fail = [&](const std::string &message, const int code) {
     if (root)
       std::cerr << "densify: error: " << one_line(message) << std::endl;
     return code;
+  };
+  // An error of a run is usually found by every rank alike (bad input, a
+  // failed solve), and rank 0 reports it. An error found on some ranks only
+  // leaves the others waiting in a collective operation: the rank that found
+  // it reports it and ends every rank.
+  const ErrorCommunicator error_comm;
+  auto stop = [&](const std::string &message, const int code) {
+    if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1 &&
+        !all_ranks_arrive(error_comm.comm, 10.))
+      {
+        std::cerr << "densify: error: " << one_line(message) << " (on MPI rank "
+                  << rank << " only; every rank stopped)" << std::endl;
+        MPI_Abort(MPI_COMM_WORLD, code);
+      }
+    return fail(message, code);
   };
 
 
@@ -139,8 +196,11 @@ main(int argc, char **argv)
   try
     {
       read_parameters(prm, filename, overrides);
-      parameters.fingerprint   = parameter_fingerprint(prm);
-      const Scene        scene = build_scene(parameters);
+      check_parameters(parameters);
+      parameters.fingerprint      = parameter_fingerprint(prm);
+      const Scene        scene    = build_scene(parameters);
+      const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
+      check_mesh_size(parameters, estimate);
       std::ostringstream what;
       what << scene.particles.size() << " particle(s)";
       if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&
@@ -151,11 +211,14 @@ main(int argc, char **argv)
                                              scene.upper_initial -
                                                parameters.tools.lower_position)
              << " % of the die up to the upper punch (spheres)";
+      what << "; about " << format_count(estimate.elements) << " tetrahedra, "
+           << format_count(std::ceil(estimate.bytes / 1e8) / 10)
+           << " GB of memory";
       summary = what.str();
     }
   catch (const std::exception &e)
     {
-      return fail(e.what(), 2);
+      return stop(e.what(), 2);
     }
   if (validate_only)
     {
@@ -185,6 +248,15 @@ main(int argc, char **argv)
       error      = e.what();
       error_code = 2;
     }
+  catch (const ExceptionBase &e)
+    {
+      // its message without deal.II's stack trace
+      std::ostringstream info;
+      e.print_info(info);
+      error = one_line(info.str());
+      if (error.empty())
+        error = e.get_exc_name();
+    }
   catch (const std::exception &e)
     {
       error = e.what();
@@ -201,7 +273,7 @@ main(int argc, char **argv)
     {
       if (simulator)
         simulator->write_to_log_file("densify: error: " + error);
-      return fail(error, error_code);
+      return stop(error, error_code);
     }
   return finished ? 0 : 3;
 }

@@ -8,6 +8,8 @@
 #include <densify/utilities.h>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -137,6 +139,15 @@ namespace densify
         "Material/Model = J2 plasticity, none otherwise (quadratic "
         "tetrahedra do not lock).",
         Patterns::Selection("auto|nodal averaging|none"));
+      prm.add_parameter(
+        "Maximum elements",
+        mesh.max_elements,
+        "A run refuses a scene whose estimated number of tetrahedra "
+        "(particles times the elements of each, from its diameter and the "
+        "element sizes) exceeds this, before meshing; --validate prints the "
+        "estimate and the memory it needs. Raise it for large scenes on a "
+        "large machine.",
+        Patterns::Integer(1));
     }
     prm.leave_subsection();
 
@@ -627,15 +638,31 @@ namespace densify
                   const std::string              &filename,
                   const std::vector<std::string> &overrides)
   {
+    if (std::filesystem::is_directory(filename))
+      throw std::runtime_error("parameter file '" + filename +
+                               "' is a directory: give a .prm file");
+    std::string text;
     {
-      std::ifstream in(filename);
+      std::ifstream in(filename, std::ios::binary);
       if (!in)
         throw std::runtime_error("cannot open parameter file '" + filename +
                                  "'");
+      std::ostringstream content;
+      content << in.rdbuf();
+      text = content.str();
     }
+    // a UTF-8 byte-order mark, as some editors write
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0)
+      text.erase(0, 3);
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+      throw std::runtime_error(
+        "parameter file '" + filename +
+        "' is empty: give a scene (e.g. a copy of prm/default.prm; densify "
+        "--print-parameters lists every entry)");
     try
       {
-        prm.parse_input(filename, "", false, false);
+        std::istringstream in(text);
+        prm.parse_input(in, filename, "", false);
       }
     catch (const ExceptionBase &e)
       {
@@ -655,6 +682,18 @@ namespace densify
         const std::string value = Utilities::trim(o.substr(eq + 1));
         if (path.empty())
           throw std::runtime_error("--set '" + o + "': no entry name");
+        for (unsigned int i = 0; i + 1 < path.size(); ++i)
+          if (!prm.subsection_path_exists(
+                std::vector<std::string>(path.begin(), path.begin() + i + 1)))
+            {
+              std::string sub;
+              for (unsigned int j = 0; j <= i; ++j)
+                sub += (j > 0 ? "/" : "") + path[j];
+              throw std::runtime_error("--set '" + o + "': no subsection '" +
+                                       sub +
+                                       "' (densify --print-parameters lists "
+                                       "every entry)");
+            }
         unsigned int depth = 0;
         try
           {
@@ -725,6 +764,15 @@ namespace densify
                 (Utilities::trim(entry.substr(0, eq)) == "Friction tangent" ||
                  Utilities::trim(entry.substr(0, eq)) == "Geometric tangent"))
               continue;
+            // so are the cut-backs (a failed run resumes with more), and the
+            // size limit only guards the start
+            if (path.size() == 1 &&
+                ((path[0] == "Time stepping" &&
+                  Utilities::trim(entry.substr(0, eq)) ==
+                    "Maximum cut-backs") ||
+                 (path[0] == "Mesh" &&
+                  Utilities::trim(entry.substr(0, eq)) == "Maximum elements")))
+              continue;
             for (const std::string &p : path)
               text << p << '/';
             text << Utilities::trim(entry.substr(0, eq)) << " = "
@@ -735,6 +783,33 @@ namespace densify
           }
       }
     return text.str();
+  }
+
+
+
+  void
+  check_parameters(const Parameters &parameters)
+  {
+    if (Utilities::trim(parameters.output.directory).empty())
+      throw std::runtime_error(
+        "Output/Directory is empty: give a directory for the results, e.g. "
+        "'output' ('.' for the working directory)");
+    // in MPa: beyond any solid (diamond: about 1.2e6 MPa), e.g. a value
+    // given in Pa, which would make the contact penalty overflow
+    if (parameters.material.youngs_modulus > 1e7)
+      {
+        std::ostringstream message;
+        message << "Material/Young's modulus = "
+                << parameters.material.youngs_modulus
+                << " MPa is beyond any solid (diamond: 1.2e6 MPa); give it "
+                   "in MPa (<= 1e7)";
+        throw std::runtime_error(message.str());
+      }
+    for (const Point<3> &d : parse_points(parameters.mesh.refinement_directions,
+                                          "Mesh/Refinement directions"))
+      if (d.norm() == 0)
+        throw std::runtime_error(
+          "Mesh/Refinement directions: a direction must not be zero");
   }
 
 
@@ -763,6 +838,10 @@ namespace densify
               throw std::runtime_error(what + ": '" + xyz[d] +
                                        "' is not a number");
             }
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!std::isfinite(p[d]))
+            throw std::runtime_error(what + ": '" + item +
+                                     "' is not a point of finite numbers");
         points.push_back(p);
       }
     return points;
@@ -791,6 +870,10 @@ namespace densify
             throw std::runtime_error(what + ": '" + item +
                                      "' is not a pair of numbers");
           }
+        if (!std::isfinite(table.back().first) ||
+            !std::isfinite(table.back().second))
+          throw std::runtime_error(what + ": '" + item +
+                                   "' is not a pair of finite numbers");
       }
     if (table.empty())
       throw std::runtime_error(what + ": empty table");

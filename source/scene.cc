@@ -9,9 +9,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 namespace densify
@@ -107,8 +110,16 @@ namespace densify
         if (!(d > 0))
           throw std::runtime_error(
             "Particles/Diameters: the layer's diameter must be > 0 mm");
-        const std::string material =
-          Utilities::split_string_list(pp.materials, ',').at(0);
+        const std::vector<std::string> m_list =
+          Utilities::split_string_list(pp.materials, ',');
+        for (const std::string &m : m_list)
+          if (m != m_list.at(0))
+            throw std::runtime_error(
+              "Particles/Materials: a " + pp.packing +
+              " has one material, not the list '" + pp.materials +
+              "': give one name, or a mixture in Particles/Material "
+              "fractions");
+        const std::string material = m_list.at(0);
         const double z = prm.tools.lower_position + d / 2;
         try
           {
@@ -188,6 +199,15 @@ namespace densify
         "no particles: set Particles/Centres or Particles/Particle file");
     if (!pp.material_fractions.empty())
       draw_materials(pp.material_fractions, pp.material_seed, particles);
+
+    // before any use of the diameters (the punch's start below)
+    for (unsigned int i = 0; i < particles.size(); ++i)
+      if (!(particles[i].diameter > 0) || !std::isfinite(particles[i].diameter))
+        throw std::runtime_error(
+          "particle " + std::to_string(i) + ": diameter " +
+          Utilities::to_string(particles[i].diameter) +
+          " mm must be a number > 0 (Particles/Diameters or the particle "
+          "file)");
 
     // the upper punch starts on the highest particle unless told otherwise
     double top = -std::numeric_limits<double>::max();
@@ -309,5 +329,100 @@ namespace densify
     for (const Particle &p : particles)
       create_material(p.material, prm.material);
     return scene;
+  }
+
+
+
+  MeshEstimate
+  estimate_mesh(const Parameters &prm, const std::vector<Particle> &particles)
+  {
+    // tetrahedra per volume of a mesh of size h: about 5.9 / h^3 (gmsh:
+    // 1795 tetrahedra in a sphere of diameter 2.5 mm with h = 0.3 mm)
+    constexpr double density      = 5.9;
+    const double     H            = prm.mesh.element_size;
+    const double     h_r          = std::min(prm.mesh.refined_element_size, H);
+    const double     g            = prm.mesh.growth;
+    unsigned int     n_directions = 0;
+    try
+      {
+        n_directions = parse_points(prm.mesh.refinement_directions,
+                                    "Mesh/Refinement directions")
+                         .size();
+      }
+    catch (...)
+      {
+        // reported where the mesh is built
+      }
+    MeshEstimate             estimate;
+    std::map<double, double> per_diameter;
+    for (const Particle &p : particles)
+      {
+        auto it = per_diameter.find(p.diameter);
+        if (it == per_diameter.end())
+          {
+            const double r      = p.diameter / 2;
+            const double volume = 4. / 3. * numbers::PI * r * r * r;
+            double       n      = density * volume / (H * H * H);
+            if (n_directions > 0 && h_r < H)
+              {
+                // each refinement point: the elements of h(d) = h_r + g d
+                // in a half ball around it, beyond those of size H
+                const double       reach = std::min((H - h_r) / g, 2 * r);
+                const unsigned int k     = 200;
+                double             extra = 0;
+                for (unsigned int i = 0; i < k; ++i)
+                  {
+                    const double d  = (i + 0.5) * reach / k;
+                    const double hd = h_r + g * d;
+                    extra += 2 * numbers::PI * d * d * reach / k * density *
+                             (1 / (hd * hd * hd) - 1 / (H * H * H));
+                  }
+                n = std::min(n + n_directions * extra,
+                             density * volume / (h_r * h_r * h_r));
+              }
+            it = per_diameter.emplace(p.diameter, n).first;
+          }
+        estimate.elements += it->second;
+      }
+    estimate.distinct_diameters = per_diameter.size();
+    // measured peaks of whole runs (mesh, matrix, AMG, history) per element
+    estimate.bytes =
+      estimate.elements * (prm.mesh.degree == 1 ? 4e3 : 2e4) + 2e8;
+    return estimate;
+  }
+
+
+
+  std::string
+  format_count(const double n)
+  {
+    std::ostringstream text;
+    if (n < 10 && n != std::round(n))
+      text << std::fixed << std::setprecision(1) << n;
+    else if (n < 1e12)
+      text << std::llround(n);
+    else
+      text << std::setprecision(2) << n;
+    return text.str();
+  }
+
+
+
+  void
+  check_mesh_size(const Parameters &prm, const MeshEstimate &estimate)
+  {
+    if (estimate.elements > prm.mesh.max_elements)
+      {
+        std::ostringstream message;
+        message << "the scene needs about " << format_count(estimate.elements)
+                << " tetrahedra (about " << format_count(estimate.bytes / 1e9)
+                << " GB of memory), more than Mesh/Maximum elements = "
+                << prm.mesh.max_elements
+                << ": raise Mesh/Element size (the count grows as its "
+                   "inverse cube) or Mesh/Refined element size, use fewer "
+                   "particles, or raise Mesh/Maximum elements on a machine "
+                   "with that memory";
+        throw std::runtime_error(message.str());
+      }
   }
 } // namespace densify

@@ -23,6 +23,7 @@
 #include <densify/utilities.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -131,23 +132,43 @@ namespace densify
       return out.str();
     }
 
-    /// Create the output directory (rank 0) and open its log.txt.
+    /// Create the output directory (rank 0) and open its log.txt; a fresh
+    /// run (not @p append) removes the checkpoint of an earlier run there,
+    /// which --resume would otherwise take for its own. Every rank throws if
+    /// rank 0 fails.
     std::ofstream
     open_log(const std::string &directory,
-             const unsigned int rank,
+             const MPI_Comm     comm,
              const bool         append)
     {
       std::ofstream log;
-      if (rank == 0)
+      std::string   error;
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
-          std::error_code error;
-          std::filesystem::create_directories(directory, error);
+          namespace fs = std::filesystem;
+          std::error_code ignored;
+          fs::create_directories(directory, ignored);
+          errno = 0;
           log.open(directory + "/log.txt",
                    append ? std::ios::app : std::ios::trunc);
           if (!log)
-            throw std::runtime_error("Output/Directory: cannot write '" +
-                                     directory + "/log.txt'");
+            error = "Output/Directory: " + write_error(directory + "/log.txt");
+          else if (!append)
+            for (const char *name :
+                 {"checkpoint", "checkpoint.old", "checkpoint.new"})
+              {
+                std::error_code removed;
+                fs::remove_all(fs::path(directory) / name, removed);
+                if (removed)
+                  error = "Output/Directory: cannot remove the earlier "
+                          "run's '" +
+                          (fs::path(directory) / name).string() + "' (" +
+                          removed.message() + ")";
+              }
         }
+      error = first_error(error, comm);
+      if (!error.empty())
+        throw InputError(error);
       return log;
     }
 
@@ -172,7 +193,7 @@ namespace densify
     , control(control)
     , comm(comm)
     , this_rank(Utilities::MPI::this_mpi_process(comm))
-    , log_file(open_log(parameters.output.directory, this_rank, control.resume))
+    , log_file(open_log(parameters.output.directory, comm, control.resume))
     , tee(std::make_unique<TeeStream>(console ? &std::cout : nullptr,
                                       this_rank == 0 ? &log_file : nullptr))
     , pcout(*tee, this_rank == 0)
@@ -229,7 +250,20 @@ namespace densify
       }
     spec.refined_element_size = prm.mesh.refined_element_size;
     spec.growth               = prm.mesh.growth;
+    // a progress line where meshing and the setup take a while
+    const MeshEstimate estimate = estimate_mesh(prm, particles);
+    const bool         large    = estimate.elements > 5e5;
+    Timer              meshing;
+    if (large)
+      pcout << "Meshing " << particles.size() << " particle(s) ("
+            << estimate.distinct_diameters << " diameter(s), about "
+            << format_count(estimate.elements) << " tetrahedra)..."
+            << std::endl;
     build_multi_body_triangulation(particles, spec, triangulation);
+    if (large)
+      pcout << "  mesh of " << triangulation.n_active_cells()
+            << " tetrahedra in " << format_seconds(meshing.wall_time())
+            << "; setting up the system..." << std::endl;
     h_min = spec.element_size;
     if (!spec.refinement_directions.empty())
       h_min = std::min(h_min, spec.refined_element_size);
@@ -1123,14 +1157,15 @@ namespace densify
               std::ldexp(1., -static_cast<int>(prm.time.max_cutbacks));
             if (cutbacks_in_a_row == prm.time.max_cutbacks ||
                 dt / 2 < smallest * (1 - 1e-9))
-              throw std::runtime_error(
+              throw ConvergenceError(
                 std::string(e.what()) +
                 (prm.time.max_cutbacks > 0 ?
                    " (also after " + std::to_string(s.cutbacks) +
                      " cut-backs, the increment down to " +
                      std::to_string(dt / step_length) +
                      " of a step; raise Time stepping/Maximum cut-backs)" :
-                   ""));
+                   " (no cut-back tried: Time stepping/Maximum cut-backs = "
+                   "0)"));
             dt /= 2;
             ++cutbacks_in_a_row;
             ++s.cutbacks;
@@ -1383,18 +1418,45 @@ namespace densify
     data_out.add_data_vector(rank, "mpi_rank");
     data_out.build_patches(*mapping, prm.mesh.degree);
     const std::string dir = prm.output.directory + "/";
-    const std::string pvtu =
-      data_out.write_vtu_with_pvtu_record(dir, "solution", step, comm, 5);
+    // a rank that cannot write (e.g. a full disk) stops every rank with the
+    // file and the cause
+    std::string pvtu, error;
+    errno = 0;
+    try
+      {
+        pvtu =
+          data_out.write_vtu_with_pvtu_record(dir, "solution", step, comm, 5);
+      }
+    catch (const std::exception &)
+      {
+        error =
+          "graphics: " + write_error(dir + "solution_" +
+                                     Utilities::int_to_string(step, 5) + ".*");
+      }
+    error = first_error(error, comm);
+    if (!error.empty())
+      throw std::runtime_error(error);
     pvd_records.emplace_back(time, pvtu);
     if (this_rank == 0)
       {
         // write then rename, so that the .pvd is always complete
-        {
-          std::ofstream pvd(dir + "solution.pvd.tmp");
-          DataOutBase::write_pvd_record(pvd, pvd_records);
-        }
-        std::filesystem::rename(dir + "solution.pvd.tmp", dir + "solution.pvd");
+        const std::string tmp = dir + "solution.pvd.tmp";
+        errno                 = 0;
+        std::ofstream pvd(tmp);
+        DataOutBase::write_pvd_record(pvd, pvd_records);
+        pvd.close();
+        if (pvd.fail())
+          {
+            error = "graphics: " + write_error(tmp);
+            std::error_code ignored;
+            std::filesystem::remove(tmp, ignored);
+          }
+        else
+          std::filesystem::rename(tmp, dir + "solution.pvd");
       }
+    error = first_error(error, comm);
+    if (!error.empty())
+      throw std::runtime_error(error);
   }
 
 
@@ -1513,26 +1575,43 @@ namespace densify
     const std::string  statistics_name =
       prm.output.directory + "/statistics.csv";
     const std::string particle_name = prm.output.directory + "/particles.csv";
+    // what rank 0 cannot write ends the run on every rank
+    std::string open_error;
     if (this_rank == 0)
-      {
-        const bool append = control.resume &&
-                            std::filesystem::exists(statistics_name) &&
-                            std::filesystem::exists(particle_name);
-        if (append)
-          {
-            truncate_rows(statistics_name, first_step - 1);
-            truncate_rows(particle_name, first_step - 1);
-          }
-        statistics_writer =
-          std::make_unique<StatisticsWriter>(statistics_name, append);
-        particle_file.open(particle_name,
-                           append ? std::ios::app : std::ios::trunc);
-        if (!append)
-          particle_file << "step,particle,material,volume,initial_volume,"
-                           "mean_displacement_x,mean_displacement_y,"
-                           "mean_displacement_z,rotation_x,rotation_y,"
-                           "rotation_z,contact_partners,die_contact\n";
-      }
+      try
+        {
+          const bool append = control.resume &&
+                              std::filesystem::exists(statistics_name) &&
+                              std::filesystem::exists(particle_name);
+          if (append)
+            {
+              truncate_rows(statistics_name, first_step - 1);
+              truncate_rows(particle_name, first_step - 1);
+            }
+          statistics_writer =
+            std::make_unique<StatisticsWriter>(statistics_name, append);
+          particle_file.open(particle_name,
+                             append ? std::ios::app : std::ios::trunc);
+          if (!append)
+            {
+              const std::string error = append_or_roll_back(
+                particle_file,
+                particle_name,
+                "step,particle,material,volume,initial_volume,"
+                "mean_displacement_x,mean_displacement_y,"
+                "mean_displacement_z,rotation_x,rotation_y,"
+                "rotation_z,contact_partners,die_contact\n");
+              if (!error.empty())
+                throw std::runtime_error(error);
+            }
+        }
+      catch (const std::exception &e)
+        {
+          open_error = e.what();
+        }
+    open_error = first_error(open_error, comm);
+    if (!open_error.empty())
+      throw std::runtime_error(open_error);
 
     const unsigned int n_steps = prm.time.n_steps;
     for (unsigned int step = first_step; step <= n_steps; ++step)
@@ -1545,10 +1624,34 @@ namespace densify
         s.time                           = time;
         s.punch_displacement             = upper_initial - upper;
         last_stabilisation_force         = 0;
-        const ContactResults     results =
-          method == Method::explicit_dynamics ?
-                advance_explicit(time, step, s) :
-                advance_to(time, step, s);
+        ContactResults results;
+        try
+          {
+            results = method == Method::explicit_dynamics ?
+                        advance_explicit(time, step, s) :
+                        advance_to(time, step, s);
+          }
+        catch (const ConvergenceError &e)
+          {
+            // every rank failed alike, back at the last converged increment:
+            // keep it for a resumption with other solver settings
+            if (step == first_step && current_time == 0)
+              throw;
+            try
+              {
+                write_checkpoint(step - 1, wall_before + wall.wall_time());
+              }
+            catch (const std::exception &c)
+              {
+                throw ConvergenceError(std::string(e.what()) + "; " + c.what());
+              }
+            throw ConvergenceError(
+              std::string(e.what()) + "; the last converged state (time " +
+              Utilities::to_string(current_time) + " s) is in " +
+              prm.output.directory +
+              "/checkpoint/: continue with --resume and other Solver or "
+              "Time stepping/Maximum cut-backs settings");
+          }
         const ToolContactResult &contact = results.tools;
 
         const auto upper_kind =
@@ -1583,20 +1686,25 @@ namespace densify
         const std::vector<ParticleMeasure> measures = measure_particles();
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
+        // what rank 0 cannot write (e.g. a full disk) ends the run on every
+        // rank; the rows written before stay complete
+        std::string write_failure;
         if (this_rank == 0)
           {
             // one row per particle and step
+            std::ostringstream rows;
             for (unsigned int p = 0; p < particles.size(); ++p)
-              particle_file
-                << step << ',' << p << ',' << particles[p].material << ','
-                << std::setprecision(10) << measures[p].volume << ','
-                << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
-                << ',' << measures[p].mean_displacement[1] << ','
-                << measures[p].mean_displacement[2] << ','
-                << measures[p].rotation[0] << ',' << measures[p].rotation[1]
-                << ',' << measures[p].rotation[2] << ',' << partners[p] << ','
-                << (die_force[p] > 0 ? 1 : 0) << '\n';
-            particle_file.flush();
+              rows << step << ',' << p << ',' << particles[p].material << ','
+                   << std::setprecision(10) << measures[p].volume << ','
+                   << initial_volumes[p] << ','
+                   << measures[p].mean_displacement[0] << ','
+                   << measures[p].mean_displacement[1] << ','
+                   << measures[p].mean_displacement[2] << ','
+                   << measures[p].rotation[0] << ',' << measures[p].rotation[1]
+                   << ',' << measures[p].rotation[2] << ',' << partners[p]
+                   << ',' << (die_force[p] > 0 ? 1 : 0) << '\n';
+            write_failure =
+              append_or_roll_back(particle_file, particle_name, rows.str());
           }
         s.relative_density = density(s.particle_volume, upper);
         s.plastic_work     = plastic_work();
@@ -1626,8 +1734,11 @@ namespace densify
         s.step_seconds = step_timer.wall_time();
         s.wall_seconds = wall_before + wall.wall_time();
         step_statistics.push_back(s);
-        if (statistics_writer)
-          statistics_writer->write(s);
+        if (statistics_writer && write_failure.empty())
+          write_failure = statistics_writer->write(s);
+        write_failure = first_error(write_failure, comm);
+        if (!write_failure.empty())
+          throw std::runtime_error(write_failure);
 
         const double left = (s.wall_seconds - wall_before) /
                             (step + 1 - first_step) * (n_steps - step);

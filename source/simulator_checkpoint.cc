@@ -8,6 +8,7 @@
 // mesh. Each rank writes what it owns (vectors, quadrature-point history of
 // its cells, contact state of its contact points) into its own file with a
 // boost binary archive, as deal.II serializes its own classes.
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -20,6 +21,7 @@
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -103,12 +105,20 @@ namespace densify
     namespace fs         = std::filesystem;
     const fs::path dir   = prm.output.directory;
     const fs::path fresh = dir / "checkpoint.new";
+    std::string    error;
     if (this_rank == 0)
       {
-        fs::remove_all(fresh);
-        fs::create_directories(fresh);
+        std::error_code failed;
+        fs::remove_all(fresh, failed);
+        if (!failed)
+          fs::create_directories(fresh, failed);
+        if (failed)
+          error = "checkpoint: cannot create '" + fresh.string() + "' (" +
+                  failed.message() + ")";
       }
-    MPI_Barrier(comm);
+    error = first_error(error, comm);
+    if (!error.empty())
+      throw std::runtime_error(error);
 
     CheckpointHeader header;
     header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
@@ -119,11 +129,14 @@ namespace densify
     for (const Point<3> &v : triangulation.get_vertices())
       header.vertices += v[0] + v[1] + v[2];
 
-    bool written = false;
-    {
-      std::ofstream out(fresh / ("rank_" + std::to_string(this_rank) + ".bin"),
-                        std::ios::binary);
-      if (out)
+    const fs::path file =
+      fresh / ("rank_" + std::to_string(this_rank) + ".bin");
+    errno = 0;
+    try
+      {
+        std::ofstream out(file, std::ios::binary);
+        if (!out)
+          throw std::runtime_error("");
         {
           {
             boost::archive::binary_oarchive archive(out);
@@ -162,33 +175,55 @@ namespace densify
           }
           // complete on disk only once the stream is flushed and closed
           out.close();
-          written = !out.fail();
+          if (out.fail())
+            throw std::runtime_error("");
         }
-    }
-    if (Utilities::MPI::min(written ? 1 : 0, comm) == 0)
-      throw std::runtime_error("Output/Directory: cannot write the checkpoint "
-                               "into '" +
-                               fresh.string() + "'");
+      }
+    catch (const std::exception &)
+      {
+        // boost's "output stream error" names neither the file nor the cause
+        error = "checkpoint: " + write_error(file.string());
+      }
+    error = first_error(error, comm);
 
     // replace the previous checkpoint only now that the new one is complete
-    if (this_rank == 0)
+    if (this_rank == 0 && error.empty())
       {
-        {
-          std::ofstream info(fresh / "info.txt");
-          info << "load step " << step << " of " << prm.time.n_steps
-               << ", time " << std::setprecision(10) << current_time
-               << ", written by " << header.n_ranks
-               << " MPI rank(s); continue with: densify FILE.prm --resume\n";
-        }
-        const fs::path current = dir / "checkpoint",
-                       old     = dir / "checkpoint.old";
-        fs::remove_all(old);
-        if (fs::exists(current))
-          fs::rename(current, old);
-        fs::rename(fresh, current);
-        fs::remove_all(old);
+        const fs::path info_name = fresh / "info.txt";
+        errno                    = 0;
+        std::ofstream info(info_name);
+        info << "load step " << step << " of " << prm.time.n_steps << ", time "
+             << std::setprecision(10) << current_time << ", written by "
+             << header.n_ranks
+             << " MPI rank(s); continue with: densify FILE.prm --resume\n";
+        info.close();
+        if (info.fail())
+          error = "checkpoint: " + write_error(info_name.string());
+        else
+          try
+            {
+              const fs::path current = dir / "checkpoint",
+                             old     = dir / "checkpoint.old";
+              fs::remove_all(old);
+              if (fs::exists(current))
+                fs::rename(current, old);
+              fs::rename(fresh, current);
+              fs::remove_all(old);
+            }
+          catch (const std::exception &e)
+            {
+              error = "checkpoint: " + one_line(e.what());
+            }
       }
-    MPI_Barrier(comm);
+    error = first_error(error, comm);
+    if (!error.empty())
+      {
+        // the previous checkpoint, if any, stays
+        std::error_code ignored;
+        if (this_rank == 0)
+          fs::remove_all(fresh, ignored);
+        throw std::runtime_error(error);
+      }
     pcout << "  checkpoint written after step " << step << std::endl;
   }
 
@@ -209,10 +244,25 @@ namespace densify
 
     std::ifstream in(file, std::ios::binary);
     if (Utilities::MPI::min(in ? 1 : 0, comm) == 0)
-      throw InputError(
-        "--resume: no checkpoint '" + file.string() +
-        "' (Output/Directory holds none for this number of ranks); run "
-        "without --resume to start from the beginning");
+      {
+        // a checkpoint of another number of ranks, or none
+        unsigned int n_files = 0;
+        if (this_rank == 0 && fs::is_directory(from))
+          for (const auto &entry : fs::directory_iterator(from))
+            if (entry.path().filename().string().rfind("rank_", 0) == 0)
+              ++n_files;
+        n_files = Utilities::MPI::broadcast(comm, n_files, 0);
+        if (n_files > 0 && n_files != n_ranks)
+          throw InputError(
+            "--resume: the checkpoint in '" + from.string() +
+            "' was written by " + std::to_string(n_files) +
+            " MPI rank(s), this run has " + std::to_string(n_ranks) +
+            "; resume with mpirun -np " + std::to_string(n_files));
+        throw InputError(
+          "--resume: no checkpoint '" + file.string() +
+          "' (Output/Directory holds none for this number of ranks); run "
+          "without --resume to start from the beginning");
+      }
 
     CheckpointHeader           header;
     unsigned int               step = 0;
@@ -318,6 +368,25 @@ namespace densify
         search_solution = solution;
         body_solution   = solution;
       }
+    // the .pvd lists the graphics up to the checkpoint only, also when the
+    // resumed run writes none
+    std::string error;
+    if (this_rank == 0 &&
+        (!pvd_records.empty() || fs::exists(dir / "solution.pvd")))
+      {
+        const fs::path tmp = dir / "solution.pvd.tmp";
+        errno              = 0;
+        std::ofstream pvd(tmp);
+        DataOutBase::write_pvd_record(pvd, pvd_records);
+        pvd.close();
+        if (pvd.fail())
+          error = "--resume: " + write_error(tmp.string());
+        else
+          fs::rename(tmp, dir / "solution.pvd");
+      }
+    error = first_error(error, comm);
+    if (!error.empty())
+      throw std::runtime_error(error);
     pcout << "Resumed from the checkpoint after step " << step << " (time "
           << current_time << ") in " << from.string() << "/" << std::endl;
     return step;
@@ -343,11 +412,19 @@ namespace densify
       }
     in.close();
     const std::string tmp = filename + ".tmp";
-    {
-      std::ofstream out(tmp);
-      for (const std::string &line : kept)
-        out << line << '\n';
-    }
+    errno                 = 0;
+    std::ofstream out(tmp);
+    for (const std::string &line : kept)
+      out << line << '\n';
+    out.close();
+    if (out.fail())
+      {
+        // the file stays as it was
+        const std::string error = "--resume: " + write_error(tmp);
+        std::error_code   ignored;
+        std::filesystem::remove(tmp, ignored);
+        throw std::runtime_error(error);
+      }
     std::filesystem::rename(tmp, filename);
   }
 } // namespace densify

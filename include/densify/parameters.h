@@ -60,6 +60,8 @@ namespace densify
     unsigned int degree = 1;
     /// "auto", "nodal averaging" (P1 only) or "none".
     std::string locking_remedy = "auto";
+    /// Largest estimated number of tetrahedra a run may mesh.
+    unsigned int max_elements = 4000000;
   };
 
   /// Subsection "Material": the constitutive model and the material "custom".
@@ -289,6 +291,14 @@ namespace densify
   read_parameters(ParameterHandler               &prm,
                   const std::string              &filename,
                   const std::vector<std::string> &overrides);
+
+  /**
+   * Checks of single entries beyond their patterns (an empty output
+   * directory, material constants no solid has). Throws std::runtime_error
+   * with a one-line message naming the entry.
+   */
+  void
+  check_parameters(const Parameters &parameters);
 
   /// Parse "x,y,z; x,y,z" into points; @p what names the entry for errors.
   std::vector<Point<3>>

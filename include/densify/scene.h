@@ -38,6 +38,36 @@ namespace densify
   Scene
   build_scene(const Parameters &prm);
 
+  /// The size of a scene's mesh, estimated before meshing.
+  struct MeshEstimate
+  {
+    /// Number of tetrahedra of all particles.
+    double elements = 0.;
+    /// Memory of a run (bytes), roughly.
+    double bytes = 0.;
+    /// Particle diameters, each meshed once.
+    unsigned int distinct_diameters = 0;
+  };
+
+  /**
+   * Estimate the mesh of @p particles from the element sizes of @p prm
+   * (about 5.9 tetrahedra per h^3 of volume, more around the refinement
+   * points) and the memory of a run on it.
+   */
+  MeshEstimate
+  estimate_mesh(const Parameters &prm, const std::vector<Particle> &particles);
+
+  /// @p n rounded to a whole number ("1234"), or as "1.2e+15" if huge.
+  std::string
+  format_count(const double n);
+
+  /**
+   * Throw std::runtime_error with a one-line message if @p estimate exceeds
+   * Mesh/Maximum elements.
+   */
+  void
+  check_mesh_size(const Parameters &prm, const MeshEstimate &estimate);
+
   /**
    * Give the particles the materials of the mixture @p fractions
    * ("name:fraction, ..."; fractions >= 0 summing to 1): round(fraction * N)

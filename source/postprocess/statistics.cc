@@ -1,20 +1,27 @@
 // The statistics.csv writer.
 #include <densify/postprocess/statistics.h>
+#include <densify/utilities.h>
 
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace densify
 {
   StatisticsWriter::StatisticsWriter(const std::string &filename,
                                      const bool         append)
-    : out(filename, append ? std::ios::app : std::ios::trunc)
+    : filename(filename)
+    , out(filename, append ? std::ios::app : std::ios::trunc)
   {
     if (!out)
-      throw std::runtime_error("Output/Directory: cannot write '" + filename +
-                               "'");
+      throw std::runtime_error("Output/Directory: " + write_error(filename));
     if (!append)
-      out << header() << std::endl;
+      {
+        const std::string error =
+          append_or_roll_back(out, filename, header() + "\n");
+        if (!error.empty())
+          throw std::runtime_error(error);
+      }
   }
 
 
@@ -36,10 +43,11 @@ namespace densify
 
 
 
-  void
+  std::string
   StatisticsWriter::write(const StepStatistics &s)
   {
-    out << s.step << ',' << std::setprecision(10) << s.time << ','
+    std::ostringstream row;
+    row << s.step << ',' << std::setprecision(10) << s.time << ','
         << s.punch_displacement << ',' << s.upper_punch_force << ','
         << s.lower_punch_force << ',' << s.die_wall_force << ','
         << s.relative_density << ',' << s.newton_iterations << ','
@@ -57,6 +65,7 @@ namespace densify
         << ',' << s.added_mass << ',' << s.kinetic_energy << ','
         << s.internal_work << ',' << s.friction_work << ',' << s.damping_work
         << ',' << s.contact_energy << ',' << s.external_work << ','
-        << s.energy_balance << ',' << s.multiplier_work << std::endl;
+        << s.energy_balance << ',' << s.multiplier_work << '\n';
+    return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

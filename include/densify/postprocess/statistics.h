@@ -88,8 +88,10 @@ namespace densify
     /// append rows to the existing file (a resumed run).
     StatisticsWriter(const std::string &filename, const bool append = false);
 
-    /// Append one row.
-    void
+    /// Append one row. Returns "" or, if it cannot be written (e.g. a full
+    /// disk), the error naming the file and the cause, with the file cut back
+    /// to its complete rows.
+    std::string
     write(const StepStatistics &s);
 
     /// The header line (column names, comma-separated).
@@ -97,6 +99,7 @@ namespace densify
     header();
 
   private:
+    std::string   filename;
     std::ofstream out;
   };
 } // namespace densify
