@@ -580,7 +580,10 @@ namespace densify
         "lambda += (p - lambda) / N: the penetration of lasting contacts "
         "vanishes, so the soft penalty of explicit runs does not bias the "
         "forces; a point contact that just closed still acts as a penalty "
-        "spring. 0: pure penalty (penetration p / eps).",
+        "spring. This integral action can make an undamped contact "
+        "oscillate with growing amplitude (an elastic sphere held by stick "
+        "friction was thrown out with N = 50): use it with Damping ratio > "
+        "0 and check KE/IE. 0: pure penalty (penetration p / eps).",
         Patterns::Integer(0));
     }
     prm.leave_subsection();

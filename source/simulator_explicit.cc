@@ -74,13 +74,22 @@ namespace densify
 
     // power iteration on M^-1 K, K x by a finite difference of the internal
     // forces at the current state; a start vector that depends on the
-    // global DoF index only, so that any number of ranks finds the same
+    // vertices' positions only (not on the DoF numbering, which depends on
+    // the number of ranks), so that any number of ranks finds the same
     TrilinosWrappers::MPI::Vector x(locally_owned, comm), Kx(x), f0(x);
     const TrilinosWrappers::MPI::Vector u = solution;
     update_ghosts();
     assemble_internal(f0, false);
-    for (const types::global_dof_index i : locally_owned)
-      x(i) = std::sin(1. + 7. * i);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              const types::global_dof_index i = cell->vertex_dof_index(v, c);
+              const Point<3>               &X = cell->vertex(v);
+              if (locally_owned.is_element(i))
+                x(i) = std::sin(1. + 7. * X[0] + 9. * X[1] + 11. * X[2] + c);
+            }
     x.compress(VectorOperation::insert);
     double omega2 = 0.;
     for (unsigned int it = 0; it < 40; ++it)

@@ -225,7 +225,7 @@ namespace densify
     double contact_stiffness = 0.25;
     /// The contact multipliers follow the pressures over about this many
     /// steps (0: pure penalty).
-    unsigned int multiplier_steps = 50;
+    unsigned int multiplier_steps = 0;
   };
 
   /// Subsection "Output": where and what to write.
