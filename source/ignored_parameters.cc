@@ -144,8 +144,8 @@ namespace densify
 
     // why an entry has no effect in this scene; empty where it has one
     const auto why = [&](const std::string &entry) -> std::string {
-      if (!explicit_method && (entry.rfind("Explicit/", 0) == 0 ||
-                               entry == "Material/Density"))
+      if (!explicit_method &&
+          (entry.rfind("Explicit/", 0) == 0 || entry == "Material/Density"))
         return "only Solver/Method = explicit uses it";
       if (explicit_method &&
           ((entry.rfind("Solver/", 0) == 0 && entry != "Solver/Method") ||

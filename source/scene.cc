@@ -120,7 +120,7 @@ namespace densify
               "': give one name, or a mixture in Particles/Material "
               "fractions");
         const std::string material = m_list.at(0);
-        const double z = prm.tools.lower_position + d / 2;
+        const double      z        = prm.tools.lower_position + d / 2;
         try
           {
             if (pp.packing == "hexagonal layer")

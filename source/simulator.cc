@@ -204,9 +204,9 @@ namespace densify
                     parallel::shared::Triangulation<3>::partition_metis)
     , dof_handler(triangulation)
   {
-    method = (parameters.solver.method == "explicit" ?
-                Method::explicit_dynamics :
-                Method::implicit);
+    method =
+      (parameters.solver.method == "explicit" ? Method::explicit_dynamics :
+                                                Method::implicit);
   }
 
 
@@ -351,8 +351,7 @@ namespace densify
                            "modes for the implicit method; set it to false "
                            "with Solver/Method = explicit");
         // the penalty that fits the stable step of the lumped mass
-        penalty =
-          setup_explicit(any_friction ? friction.tangential_ratio : 0.);
+        penalty = setup_explicit(any_friction ? friction.tangential_ratio : 0.);
       }
     const Quadrature<2> contact_points = contact_quadrature(prm);
     tool_contact.setup(dof_handler, tools, tool_laws, penalty, contact_points);
@@ -597,7 +596,6 @@ namespace densify
                                     std::string("failed on another rank") :
                                     material_failure));
       }
-
   }
 
 
@@ -1557,8 +1555,8 @@ namespace densify
         // read_checkpoint() then restores)
         const double dt = explicit_dynamics->start(
           *this, solution, prm.explicit_dynamics.mass_scaling != "none");
-        const auto [low, high] = std::minmax_element(explicit_penalty.begin(),
-                                                     explicit_penalty.end());
+        const auto [low, high] =
+          std::minmax_element(explicit_penalty.begin(), explicit_penalty.end());
         pcout << "Explicit dynamics: time step " << std::setprecision(4) << dt
               << " s (stable " << explicit_dynamics->stable_step()
               << " s), about "
@@ -1620,10 +1618,10 @@ namespace densify
         const double   time  = prm.time.end_time * step / n_steps;
         const double   upper = upper_punch_position(time);
         StepStatistics s;
-        s.step                           = step;
-        s.time                           = time;
-        s.punch_displacement             = upper_initial - upper;
-        last_stabilisation_force         = 0;
+        s.step                   = step;
+        s.time                   = time;
+        s.punch_displacement     = upper_initial - upper;
+        last_stabilisation_force = 0;
         ContactResults results;
         try
           {
@@ -1718,13 +1716,13 @@ namespace densify
             s.damping_work                     = a.damping;
             s.friction_work                    = explicit_work.friction;
             s.contact_energy                   = explicit_work.contact_energy;
-            s.external_work     = explicit_work.tools + explicit_work.body;
-            s.multiplier_work   = explicit_work.multipliers;
-            s.added_mass        = lumped_mass->added_mass_fraction();
-            s.energy_balance    = s.external_work + s.multiplier_work -
-                               (s.kinetic_energy + s.internal_work +
-                                s.damping_work + s.friction_work +
-                                s.contact_energy);
+            s.external_work   = explicit_work.tools + explicit_work.body;
+            s.multiplier_work = explicit_work.multipliers;
+            s.added_mass      = lumped_mass->added_mass_fraction();
+            s.energy_balance =
+              s.external_work + s.multiplier_work -
+              (s.kinetic_energy + s.internal_work + s.damping_work +
+               s.friction_work + s.contact_energy);
           }
 
         if (prm.output.interval > 0 &&
@@ -1757,8 +1755,7 @@ namespace densify
           pcout << "  explicit " << s.increments << " steps (dt "
                 << std::setprecision(3) << s.time_step << " s)  KE/IE "
                 << std::setprecision(2)
-                << 100. * s.kinetic_energy /
-                     std::max(s.internal_work, 1e-300)
+                << 100. * s.kinetic_energy / std::max(s.internal_work, 1e-300)
                 << " %";
         else
           {

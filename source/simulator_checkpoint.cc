@@ -311,10 +311,9 @@ namespace densify
                            std::to_string(header.n_dofs) +
                            " DoFs) is not the one this scene makes; run "
                            "without --resume");
-        archive &step &current_time &current_upper &next_increment
-          &last_punch_increment &wall &solution_values &increment_values
-            &history &tools &contacts &pvd_records &dynamics &explicit_work
-              &factors;
+        archive &step &current_time &current_upper &next_increment &
+          last_punch_increment &wall &solution_values &increment_values &history
+            &tools &contacts &pvd_records &dynamics &explicit_work &factors;
       }
     catch (const InputError &)
       {

@@ -18,22 +18,25 @@ namespace densify
   Simulator::setup_explicit(const double tangential_ratio)
   {
     const std::string &scaling = prm.explicit_dynamics.mass_scaling;
-    lumped_mass                = std::make_unique<LumpedMass>(
-      dof_handler,
-      particle_material,
-      scaling == "none"    ? MassScaling::none :
-      scaling == "uniform" ? MassScaling::uniform :
-                             MassScaling::selective,
-      tangential_ratio);
-    explicit_dynamics = std::make_unique<ExplicitDynamics>(
-      prm.explicit_dynamics, prm.time.end_time, comm);
+    lumped_mass =
+      std::make_unique<LumpedMass>(dof_handler,
+                                   particle_material,
+                                   scaling == "none" ? MassScaling::none :
+                                   scaling == "uniform" ?
+                                                       MassScaling::uniform :
+                                                       MassScaling::selective,
+                                   tangential_ratio);
+    explicit_dynamics =
+      std::make_unique<ExplicitDynamics>(prm.explicit_dynamics,
+                                         prm.time.end_time,
+                                         comm);
     // the mass (scaled for the target step), then the contact penalty that
     // fits the elements' stable step
-    const bool scaled = (scaling != "none");
-    const double required =
-      scaled ? prm.explicit_dynamics.loading_time /
-                 prm.explicit_dynamics.n_steps / prm.explicit_dynamics.safety :
-               0.;
+    const bool   scaled   = (scaling != "none");
+    const double required = scaled ? prm.explicit_dynamics.loading_time /
+                                       prm.explicit_dynamics.n_steps /
+                                       prm.explicit_dynamics.safety :
+                                     0.;
     TrilinosWrappers::MPI::Vector mass;
     update_ghosts();
     lumped_mass->update(solution_ghosted, required, mass);
@@ -76,7 +79,7 @@ namespace densify
     // forces at the current state; a start vector that depends on the
     // vertices' positions only (not on the DoF numbering, which depends on
     // the number of ranks), so that any number of ranks finds the same
-    TrilinosWrappers::MPI::Vector x(locally_owned, comm), Kx(x), f0(x);
+    TrilinosWrappers::MPI::Vector       x(locally_owned, comm), Kx(x), f0(x);
     const TrilinosWrappers::MPI::Vector u = solution;
     update_ghosts();
     assemble_internal(f0, false);
@@ -95,7 +98,7 @@ namespace densify
     for (unsigned int it = 0; it < 40; ++it)
       {
         const double delta = 1e-7 * h_min / std::max(x.linfty_norm(), 1e-300);
-        solution = u;
+        solution           = u;
         solution.add(delta, x);
         update_ghosts();
         Kx = 0.;
@@ -189,7 +192,7 @@ namespace densify
     }
 
     TimerOutput::Scope tc(timer, "Explicit: contact and loads");
-    external = 0.;
+    external         = 0.;
     double body_work = 0.;
     if (body_force.norm() > 0)
       {
@@ -199,15 +202,14 @@ namespace densify
         add_body_force(body_forces);
         for (unsigned int i = 0; i < solution.locally_owned_size(); ++i)
           {
-            const double du =
-              solution.begin()[i] - body_solution.begin()[i];
+            const double du = solution.begin()[i] - body_solution.begin()[i];
             body_work -=
               (old_forces.begin()[i] + body_forces.begin()[i]) / 2. * du;
           }
         external += body_forces;
         body_solution = solution;
       }
-    const unsigned int n_relax = prm.explicit_dynamics.multiplier_steps;
+    const unsigned int n_relax    = prm.explicit_dynamics.multiplier_steps;
     const double       relaxation = n_relax > 0 ? 1. / n_relax : 0.;
     ContactResults     contact;
     contact.tools = tool_contact.assemble_and_commit(*mapping,
@@ -267,13 +269,12 @@ namespace densify
     ContactResults &sum = interval_sum;
     sum.tools.max_penetration =
       std::max(sum.tools.max_penetration, contact.tools.max_penetration);
-    sum.particles.max_penetration =
-      std::max(sum.particles.max_penetration,
-               contact.particles.max_penetration);
-    sum.tools.n_active     = contact.tools.n_active;
-    sum.tools.n_slip       = contact.tools.n_slip;
-    sum.particles.n_active = contact.particles.n_active;
-    sum.particles.n_slip   = contact.particles.n_slip;
+    sum.particles.max_penetration = std::max(sum.particles.max_penetration,
+                                             contact.particles.max_penetration);
+    sum.tools.n_active            = contact.tools.n_active;
+    sum.tools.n_slip              = contact.tools.n_slip;
+    sum.particles.n_active        = contact.particles.n_active;
+    sum.particles.n_slip          = contact.particles.n_slip;
     interval_weight[0] += dt;
     interval_weight[1] += dt * scene_time;
     interval_weight[2] += dt * scene_time * scene_time;
@@ -287,9 +288,9 @@ namespace densify
                               StepStatistics    &s)
   {
     (void)step;
-    interval_sum    = ContactResults();
-    interval_moment = ContactResults();
-    interval_weight = {{0., 0., 0.}};
+    interval_sum     = ContactResults();
+    interval_moment  = ContactResults();
+    interval_weight  = {{0., 0., 0.}};
     explicit_account = explicit_dynamics->advance(*this, solution, time);
     current_time     = time;
     current_upper    = upper_punch_position(time);
@@ -306,24 +307,27 @@ namespace densify
       if (!line)
         return std::decay_t<decltype(sum)>(sum / S0);
       const auto slope = (S0 * moment - S1 * sum) / det;
-      return std::decay_t<decltype(sum)>((sum - S1 * slope) / S0 + time * slope);
+      return std::decay_t<decltype(sum)>((sum - S1 * slope) / S0 +
+                                         time * slope);
     };
-    ContactResults       fit = interval_sum;
-    const ContactResults &m  = interval_moment;
+    ContactResults        fit = interval_sum;
+    const ContactResults &m   = interval_moment;
     for (unsigned int k = 0; k < n_tool_kinds; ++k)
       {
-        fit.tools.normal_force[k] = at_station(interval_sum.tools.normal_force[k],
-                                               m.tools.normal_force[k]);
-        fit.tools.axial_force[k]  = at_station(interval_sum.tools.axial_force[k],
-                                              m.tools.axial_force[k]);
+        fit.tools.normal_force[k] =
+          at_station(interval_sum.tools.normal_force[k],
+                     m.tools.normal_force[k]);
+        fit.tools.axial_force[k] =
+          at_station(interval_sum.tools.axial_force[k], m.tools.axial_force[k]);
         fit.tools.friction_force[k] =
           at_station(interval_sum.tools.friction_force[k],
                      m.tools.friction_force[k]);
       }
     fit.particles.normal_force =
       at_station(interval_sum.particles.normal_force, m.particles.normal_force);
-    fit.particles.friction_force = at_station(
-      interval_sum.particles.friction_force, m.particles.friction_force);
+    fit.particles.friction_force =
+      at_station(interval_sum.particles.friction_force,
+                 m.particles.friction_force);
     return fit;
   }
 
@@ -342,18 +346,19 @@ namespace densify
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const Material    &m = *particle_material[cell->material_id()];
-          const std::size_t  k0 =
+          const Material   &m = *particle_material[cell->material_id()];
+          const std::size_t k0 =
             std::size_t(cell->active_cell_index()) * history_per_cell;
           if (nodal_averaging)
             for (unsigned int q = 0; q < 4; ++q)
-              work += cell->measure() / 4. * m.plastic_work(committed_history[k0 + q]);
+              work += cell->measure() / 4. *
+                      m.plastic_work(committed_history[k0 + q]);
           else
             {
               fe_values.reinit(cell);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
-                work += fe_values.JxW(q) *
-                        m.plastic_work(committed_history[k0 + q]);
+                work +=
+                  fe_values.JxW(q) * m.plastic_work(committed_history[k0 + q]);
             }
         }
     return Utilities::MPI::sum(work, comm);

@@ -415,7 +415,9 @@ namespace densify
     /// The explicit counterpart of advance_to(): integrate to @p time (the
     /// end of load step @p step); forces are the means over the interval.
     ContactResults
-    advance_explicit(const double time, const unsigned int step, StepStatistics &s);
+    advance_explicit(const double       time,
+                     const unsigned int step,
+                     StepStatistics    &s);
 
     /// The largest squared frequency of the elements (elastic, at the
     /// current state) with the lumped mass @p mass, by power iteration.
@@ -448,7 +450,7 @@ namespace densify
     double
     plastic_work() const;
 
-    std::unique_ptr<LumpedMass>       lumped_mass;
+    std::unique_ptr<LumpedMass> lumped_mass;
     /// The explicit run's contact penalty per particle (MPa/mm).
     std::vector<double>               explicit_penalty;
     std::unique_ptr<ExplicitDynamics> explicit_dynamics;

@@ -145,10 +145,10 @@ namespace densify
       if (cell->is_locally_owned())
         {
           const unsigned int e = cell->active_cell_index();
-          min_unscaled = std::min(min_unscaled,
-                                  step_unscaled[e] * std::sqrt(factor[e]));
+          min_unscaled =
+            std::min(min_unscaled, step_unscaled[e] * std::sqrt(factor[e]));
         }
-    min_unscaled = Utilities::MPI::min(min_unscaled, comm);
+    min_unscaled        = Utilities::MPI::min(min_unscaled, comm);
     double spring_share = 1.;
     if (!penalty.empty() && last_mass.size() > 0)
       {
@@ -162,7 +162,7 @@ namespace densify
         // the calibrated bound's
         const double target =
           required_step * std::sqrt(spring_share * calibration);
-        double       needed = 1.;
+        double needed = 1.;
         for (const auto &cell : dof_handler->active_cell_iterators())
           if (cell->is_locally_owned())
             {
@@ -201,7 +201,8 @@ namespace densify
           scaled += m_e;
           part_mass[p] += m_e;
           part_c2[p] += m_e * m.p_wave_modulus() / (m.density() * factor[e]);
-          min_step = std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
+          min_step =
+            std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
         }
     mass.compress(VectorOperation::add);
     physical = Utilities::MPI::sum(physical, comm);
@@ -238,7 +239,8 @@ namespace densify
 
 
   double
-  LumpedMass::contact_frequency2(const TrilinosWrappers::MPI::Vector &mass) const
+  LumpedMass::contact_frequency2(
+    const TrilinosWrappers::MPI::Vector &mass) const
   {
     // per surface vertex 2 r eps_p A_i / m_i, the largest over the mesh
     double omega2 = 0.;
@@ -250,9 +252,8 @@ namespace densify
             if (!owned.is_element(i) || area(i) == 0.)
               continue;
             omega2 = std::max(omega2,
-                              2. * spring_ratio *
-                                penalty[cell->material_id()] * area(i) /
-                                mass(i));
+                              2. * spring_ratio * penalty[cell->material_id()] *
+                                area(i) / mass(i));
           }
     return Utilities::MPI::max(omega2, dof_handler->get_communicator());
   }
@@ -272,7 +273,8 @@ namespace densify
       if (cell->is_locally_owned())
         {
           const unsigned int e = cell->active_cell_index();
-          min_step = std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
+          min_step =
+            std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
           for (const unsigned int v : cell->vertex_indices())
             {
               const types::global_dof_index i = cell->vertex_dof_index(v, 0);

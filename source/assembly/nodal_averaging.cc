@@ -497,8 +497,8 @@ namespace densify
         double gamma_sum = 0., p_sum = 0.;
         // one return mapping per cell: the deviator of the first corner's
         // Kirchhoff stress, shared by all four (see the declaration)
-        double       p_dummy;
-        const bool   shared = shared_corners && tangent == nullptr && finite &&
+        double     p_dummy;
+        const bool shared = shared_corners && tangent == nullptr && finite &&
                             material.kirchhoff_pressure(1., p_dummy);
         Tensor<2, 3> tau_dev, F_inv_T;
         if (shared)
@@ -546,7 +546,7 @@ namespace densify
                     material.stress(F_bar, old, now, P);
                   if (shared)
                     {
-                      tau_dev = P * transpose(F_bar);
+                      tau_dev          = P * transpose(F_bar);
                       const double p_0 = trace(tau_dev) / 3.;
                       for (unsigned int d = 0; d < 3; ++d)
                         tau_dev[d][d] -= p_0;

@@ -660,7 +660,7 @@ namespace densify
                 if (out.new_traction != nullptr && friction_on)
                   {
                     (*out.new_traction)[idx] = r.traction;
-                    const Tensor<1, 3> slip = delta - (delta * n) * n;
+                    const Tensor<1, 3> slip  = delta - (delta * n) * n;
                     if (r.status == ContactStatus::slip)
                       (*out.new_slip)[idx] += slip.norm();
                     // the traction t = -eps_t s_e opposes the slip beyond
@@ -670,10 +670,9 @@ namespace densify
                       weight *
                       (r.traction *
                        (friction.model == FrictionModel::coulomb ?
-                          Tensor<1, 3>(slip + (r.traction -
-                                               committed_traction[idx]) /
-                                                (friction.tangential_ratio *
-                                                 eps)) :
+                          Tensor<1, 3>(slip +
+                                       (r.traction - committed_traction[idx]) /
+                                         (friction.tangential_ratio * eps)) :
                           slip)) *
                       JxW;
                   }
@@ -943,7 +942,7 @@ namespace densify
     if (relaxation > 0.)
       out.new_lambda = &pressure;
     std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
-    std::vector<double>       new_slip = accumulated_slip;
+    std::vector<double>       new_slip    = accumulated_slip;
     const bool                friction_on = friction.mu > 0.;
     if (friction_on)
       {

@@ -240,7 +240,7 @@ namespace densify
                 if (out.new_traction != nullptr && rough)
                   {
                     (*out.new_traction)[idx] = r.traction;
-                    const Tensor<1, 3> slip = delta - (delta * n) * n;
+                    const Tensor<1, 3> slip  = delta - (delta * n) * n;
                     if (r.status == ContactStatus::slip)
                       (*out.new_slip)[idx] += slip.norm();
                     // the traction t = -eps_t s_e opposes the slip beyond
@@ -251,11 +251,10 @@ namespace densify
                     result.friction_work -=
                       (r.traction *
                        (spring ?
-                          Tensor<1, 3>(slip + (r.traction -
-                                               committed_traction[idx]) /
-                                                (friction_laws[t]
-                                                   .tangential_ratio *
-                                                 eps)) :
+                          Tensor<1, 3>(
+                            slip +
+                            (r.traction - committed_traction[idx]) /
+                              (friction_laws[t].tangential_ratio * eps)) :
                           slip)) *
                       JxW;
                   }
@@ -467,10 +466,11 @@ namespace densify
 
 
   ToolContactResult
-  ToolContact::assemble_and_commit(const Mapping<3> &mapping,
-                                   const TrilinosWrappers::MPI::Vector &solution,
-                                   TrilinosWrappers::MPI::Vector &residual,
-                                   const double relaxation)
+  ToolContact::assemble_and_commit(
+    const Mapping<3>                    &mapping,
+    const TrilinosWrappers::MPI::Vector &solution,
+    TrilinosWrappers::MPI::Vector       &residual,
+    const double                         relaxation)
   {
     Outputs out;
     out.residual = &residual;

@@ -21,14 +21,22 @@ namespace densify
 
 
 
+  std::pair<double, double>
+  ExplicitDynamics::ramp() const
+  {
+    const double T  = prm.loading_time;
+    const double tr = prm.ramp_fraction * T;
+    return {tr, scene_end / (T - tr / 2.)};
+  }
+
+
+
   double
   ExplicitDynamics::scene_time(const double t) const
   {
     // tau' = k s(t / t_r) with the smooth step s(x) = 3x^2 - 2x^3 up to the
     // ramp's end t_r, k afterwards; int_0^x s = x^3 - x^4/2
-    const double T  = prm.loading_time;
-    const double tr = prm.ramp_fraction * T;
-    const double k  = scene_end / (T - tr / 2.);
+    const auto [tr, k] = ramp();
     if (t <= 0.)
       return 0.;
     if (t < tr)
@@ -44,9 +52,7 @@ namespace densify
   double
   ExplicitDynamics::physical_time(const double tau) const
   {
-    const double T  = prm.loading_time;
-    const double tr = prm.ramp_fraction * T;
-    const double k  = scene_end / (T - tr / 2.);
+    const auto [tr, k] = ramp();
     if (tau <= 0.)
       return 0.;
     if (tau >= k * tr / 2.)
@@ -56,7 +62,7 @@ namespace densify
     double       lo = 0., hi = 1.;
     for (unsigned int i = 0; i < 60; ++i)
       {
-        const double x = (lo + hi) / 2.;
+        const double x                                      = (lo + hi) / 2.;
         (x * x * x - x * x * x * x / 2. < target ? lo : hi) = x;
       }
     return tr * (lo + hi) / 2.;
@@ -70,8 +76,8 @@ namespace densify
     stable = system.update_mass(scaled ? target_step / prm.safety : 0., mass);
     // the requested step where the mass scaling reached it, else the
     // stable step times the safety factor
-    step = scaled ? std::min(target_step, prm.safety * stable) :
-                    prm.safety * stable;
+    step =
+      scaled ? std::min(target_step, prm.safety * stable) : prm.safety * stable;
     inverse_mass.reinit(mass);
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
       inverse_mass.begin()[i] =
@@ -108,19 +114,19 @@ namespace densify
                             const double                   target)
   {
     renew_mass(system);
-    const double t_end = physical_time(target);
+    const double       t_end = physical_time(target);
     const unsigned int n =
       std::max(1., std::ceil((t_end - time) / step * (1. - 1e-9)));
     const double h = (t_end - time) / n;
 
-    const unsigned int size = u.locally_owned_size();
-    double            *x    = u.begin();
-    double            *v    = velocity.begin();
-    double            *du   = previous_u.begin();
-    const double      *m    = mass.begin();
+    const unsigned int size  = u.locally_owned_size();
+    double            *x     = u.begin();
+    double            *v     = velocity.begin();
+    double            *du    = previous_u.begin();
+    const double      *m     = mass.begin();
     const double      *m_inv = inverse_mass.begin();
-    double            *ri   = r_internal.begin();
-    double            *re   = r_external.begin();
+    double            *ri    = r_internal.begin();
+    double            *re    = r_external.begin();
     for (unsigned int k = 0; k < n; ++k)
       {
         const double h_avg = (last_step + h) / 2.;
@@ -152,8 +158,8 @@ namespace densify
         catch (const std::exception &e)
           {
             std::ostringstream text;
-            text << "explicit integration failed at t = " << time
-                 << " s (step " << n_steps << "): " << e.what()
+            text << "explicit integration failed at t = " << time << " s (step "
+                 << n_steps << "): " << e.what()
                  << "; the run is probably unstable: lower Explicit/Time step "
                     "safety (now "
                  << prm.safety << ")";
@@ -182,11 +188,10 @@ namespace densify
                                     Utilities::MPI::sum(w_external, comm)};
             ke                   = sums[0];
             const double work_in = system.external_work();
-            const double scale =
-              std::max({std::abs(work_in), std::abs(sums[1]), std::abs(sums[2])});
-            const double identity =
-              sums[2] - sums[0] - sums[1] -
-              Utilities::MPI::sum(w_damping, comm);
+            const double scale   = std::max(
+              {std::abs(work_in), std::abs(sums[1]), std::abs(sums[2])});
+            const double identity = sums[2] - sums[0] - sums[1] -
+                                    Utilities::MPI::sum(w_damping, comm);
             const bool unbounded = !std::isfinite(ke) ||
                                    !std::isfinite(identity) ||
                                    ke > 10. * scale + 1e-9 ||
@@ -210,9 +215,8 @@ namespace densify
     double ke = 0.;
     for (unsigned int i = 0; i < size; ++i)
       {
-        const double v_n =
-          (v[i] - h / 2. * m_inv[i] * (ri[i] + re[i])) /
-          (1. + damping * h / 4.);
+        const double v_n = (v[i] - h / 2. * m_inv[i] * (ri[i] + re[i])) /
+                           (1. + damping * h / 4.);
         ke += m[i] * v_n * v_n / 2.;
       }
     Account account;

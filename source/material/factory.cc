@@ -13,8 +13,8 @@ namespace densify
     J2Parameters j2;
     if (name == "custom")
       {
-        j2.E      = prm.youngs_modulus;
-        j2.nu     = prm.poissons_ratio;
+        j2.E       = prm.youngs_modulus;
+        j2.nu      = prm.poissons_ratio;
         j2.sigma0  = prm.yield_stress;
         j2.density = prm.density;
         j2.label   = name;

@@ -147,7 +147,7 @@ namespace densify
     }
 
   private:
-    const DoFHandler<3>                                *dof_handler;
+    const DoFHandler<3> *dof_handler;
     /// The locally owned DoFs.
     const IndexSet                                      owned;
     const std::vector<std::shared_ptr<const Material>> &materials;

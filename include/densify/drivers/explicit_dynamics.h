@@ -7,6 +7,7 @@
 #include <densify/parameters.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace densify
@@ -84,7 +85,7 @@ namespace densify
       /// Work dissipated by the damping.
       double damping = 0.;
       /// Explicit steps since the start and in the last interval.
-      unsigned long long steps = 0;
+      unsigned long long steps          = 0;
       unsigned int       interval_steps = 0;
       /// Time step of the last interval (s) and the stable step (s).
       double step = 0., stable_step = 0.;
@@ -98,8 +99,7 @@ namespace densify
       std::vector<double> velocity, internal, external;
       double              time = 0., last_step = 0.;
       unsigned long long  steps = 0;
-      double              kinetic = 0., w_internal = 0., w_external = 0.,
-             w_damping = 0.;
+      double kinetic = 0., w_internal = 0., w_external = 0., w_damping = 0.;
 
       template <class Archive>
       void
@@ -176,8 +176,8 @@ namespace densify
     const ExplicitParameters      prm;
     const double                  scene_end;
     const MPI_Comm                comm;
-    double                        damping = 0.;
-    bool                          scaled  = true;
+    double                        damping     = 0.;
+    bool                          scaled      = true;
     double                        target_step = 0., step = 0., stable = 0.;
     double                        time = 0., last_step = 0.;
     unsigned long long            n_steps = 0;
@@ -185,6 +185,10 @@ namespace densify
       r_external, previous_u;
     /// Energy sums so far (this rank's part of the work; kinetic global).
     double kinetic = 0., w_internal = 0., w_external = 0., w_damping = 0.;
+
+    /// The ramp's end t_r (s) and the scene-time rate k after it.
+    std::pair<double, double>
+    ramp() const;
 
     /// Renew the mass and the time step.
     void
