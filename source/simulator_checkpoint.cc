@@ -33,7 +33,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 2;
+    constexpr unsigned int checkpoint_version = 3;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -166,12 +166,17 @@ namespace densify
             // mass-scaling factors
             ExplicitDynamics::State dynamics;
             std::vector<double>     factors;
+            double                  calibration = 1.;
+            std::vector<double>     mode;
             if (explicit_dynamics)
               {
-                dynamics = explicit_dynamics->state();
-                factors  = lumped_mass->scaling_factors();
+                dynamics    = explicit_dynamics->state();
+                factors     = lumped_mass->scaling_factors();
+                calibration = lumped_mass->calibration_factor();
+                mode.assign(frequency_mode.begin(), frequency_mode.end());
               }
-            archive &dynamics &explicit_work &factors;
+            archive &dynamics &explicit_work &factors &calibration
+              &calibrated_bound &mass_updates &mode;
           }
           // complete on disk only once the stream is flushed and closed
           out.close();
@@ -273,6 +278,8 @@ namespace densify
     ParticleContact::State     contacts;
     ExplicitDynamics::State    dynamics;
     std::vector<double>        factors;
+    double                     calibration = 1.;
+    std::vector<double>        mode;
     try
       {
         boost::archive::binary_iarchive archive(in);
@@ -311,9 +318,10 @@ namespace densify
                            std::to_string(header.n_dofs) +
                            " DoFs) is not the one this scene makes; run "
                            "without --resume");
-        archive &step &current_time &current_upper &next_increment &
-          last_punch_increment &wall &solution_values &increment_values &history
-            &tools &contacts &pvd_records &dynamics &explicit_work &factors;
+        archive &step &current_time &current_upper &next_increment
+          &last_punch_increment &wall &solution_values &increment_values
+            &history &tools &contacts &pvd_records &dynamics &explicit_work
+              &factors &calibration &calibrated_bound &mass_updates &mode;
       }
     catch (const InputError &)
       {
@@ -364,6 +372,9 @@ namespace densify
                            "implicit");
         explicit_dynamics->set_state(dynamics);
         lumped_mass->set_scaling_factors(factors);
+        lumped_mass->set_calibration_factor(calibration);
+        AssertDimension(mode.size(), frequency_mode.locally_owned_size());
+        std::copy(mode.begin(), mode.end(), frequency_mode.begin());
         search_solution = solution;
         body_solution   = solution;
       }

@@ -43,8 +43,9 @@ namespace densify
     // the cell bound calibrated by the mesh's measured largest frequency,
     // with a margin for the power iteration (which approaches it from
     // below) and for the cells' later distortion
-    lumped_mass->calibrate(largest_frequency2(mass), 1.25);
+    lumped_mass->calibrate(largest_frequency2(mass), calibration_margin, true);
     lumped_mass->update(solution_ghosted, required, mass);
+    calibrated_bound = lumped_mass->bound_frequency2();
     explicit_penalty =
       lumped_mass->contact_penalties(prm.explicit_dynamics.contact_stiffness);
     std::vector<double> diameters;
@@ -83,19 +84,29 @@ namespace densify
     const TrilinosWrappers::MPI::Vector u = solution;
     update_ghosts();
     assemble_internal(f0, false);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              const types::global_dof_index i = cell->vertex_dof_index(v, c);
-              const Point<3>               &X = cell->vertex(v);
-              if (locally_owned.is_element(i))
-                x(i) = std::sin(1. + 7. * X[0] + 9. * X[1] + 11. * X[2] + c);
-            }
-    x.compress(VectorOperation::insert);
+    // a measurement during the run starts from the last one's vector, which
+    // is close to the new mode: fewer iterations
+    const bool warm = frequency_mode.size() == x.size();
+    if (warm)
+      x = frequency_mode;
+    else
+      {
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  const types::global_dof_index i =
+                    cell->vertex_dof_index(v, c);
+                  const Point<3> &X = cell->vertex(v);
+                  if (locally_owned.is_element(i))
+                    x(i) =
+                      std::sin(1. + 7. * X[0] + 9. * X[1] + 11. * X[2] + c);
+                }
+        x.compress(VectorOperation::insert);
+      }
     double omega2 = 0.;
-    for (unsigned int it = 0; it < 40; ++it)
+    for (unsigned int it = 0; it < (warm ? 15u : 40u); ++it)
       {
         const double delta = 1e-7 * h_min / std::max(x.linfty_norm(), 1e-300);
         solution           = u;
@@ -115,7 +126,8 @@ namespace densify
             mass.begin()[k] > 0. ? Kx.begin()[k] / mass.begin()[k] : 0.;
         x /= std::max(x.linfty_norm(), 1e-300);
       }
-    solution = u;
+    frequency_mode = x;
+    solution       = u;
     update_ghosts();
     std::swap(elastic, particle_material);
     has_history = history;
@@ -130,7 +142,29 @@ namespace densify
   {
     TimerOutput::Scope t(timer, "Explicit: mass");
     update_ghosts();
-    return lumped_mass->update(solution_ghosted, required_step, mass);
+    double stable = lumped_mass->update(solution_ghosted, required_step, mass);
+    // the calibration measured anew once the cells' bound has moved by more
+    // than a tenth since the last measurement (the cells flatten as the
+    // powder densifies, and the ratio of the true largest frequency to the
+    // bound changes with their shape), and at least every
+    // recalibration_interval stations
+    ++mass_updates;
+    const double drift =
+      std::abs(lumped_mass->bound_frequency2() / calibrated_bound - 1.);
+    if (drift > 0.1 || mass_updates % recalibration_interval == 0)
+      {
+        const double before = lumped_mass->calibration_factor();
+        lumped_mass->calibrate(largest_frequency2(mass),
+                               calibration_margin,
+                               false);
+        stable = lumped_mass->update(solution_ghosted, required_step, mass);
+        calibrated_bound = lumped_mass->bound_frequency2();
+        pcout << "Explicit dynamics: stable step measured anew at t = "
+              << load_time << ": calibration " << before << " -> "
+              << lumped_mass->calibration_factor() << ", added mass "
+              << 100. * lumped_mass->added_mass_fraction() << " %" << std::endl;
+      }
+    return stable;
   }
 
 

@@ -451,6 +451,17 @@ namespace densify
     plastic_work() const;
 
     std::unique_ptr<LumpedMass> lumped_mass;
+    /// Margin of the measured largest frequency over the power iteration's
+    /// estimate (which approaches it from below).
+    static constexpr double calibration_margin = 1.25;
+    /// Stations between two measurements of the largest frequency at most.
+    static constexpr unsigned int recalibration_interval = 10;
+    /// Mass updates so far (one per station), and the raw cell bound at the
+    /// last measurement of the largest frequency (1/s^2).
+    unsigned int mass_updates     = 0;
+    double       calibrated_bound = 0.;
+    /// The power iteration's last vector, the start of the next one.
+    TrilinosWrappers::MPI::Vector frequency_mode;
     /// The explicit run's contact penalty per particle (MPa/mm).
     std::vector<double>               explicit_penalty;
     std::unique_ptr<ExplicitDynamics> explicit_dynamics;

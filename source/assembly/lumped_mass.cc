@@ -228,12 +228,15 @@ namespace densify
 
 
   void
-  LumpedMass::calibrate(const double omega2, const double margin)
+  LumpedMass::calibrate(const double omega2,
+                        const double margin,
+                        const bool   restart)
   {
+    // the measured frequency over the raw cell bound of the last update()
     if (omega_bound2 > 0. && omega2 > 0.)
       calibration = std::min(1., margin * omega2 / omega_bound2);
-    // the scaling starts afresh from the calibrated bound
-    std::fill(factor.begin(), factor.end(), 1.);
+    if (restart)
+      std::fill(factor.begin(), factor.end(), 1.);
   }
 
 

@@ -99,11 +99,20 @@ namespace densify
      * margin * omega2 / bound_frequency2() (at most 1) times the bound. The
      * cell bound is safe but, measured on meshes of spheres, 3-4 times too
      * small a step; the calibration keeps its dependence on each cell's
-     * current shape. Recompute the mass (update()) and the contact penalty
-     * afterwards.
+     * current shape. With @p restart the mass scaling starts afresh from the
+     * calibrated bound (at the start of a run); without, the scaling factors
+     * are kept and can only grow (during a run, so that no mass is taken
+     * away from moving nodes). Recompute the mass (update()) afterwards.
      */
     void
-    calibrate(const double omega2, const double margin);
+    calibrate(const double omega2, const double margin, const bool restart);
+
+    /// Restore a calibration factor saved from calibration_factor().
+    void
+    set_calibration_factor(const double saved)
+    {
+      calibration = saved;
+    }
 
     /// The calibration factor (1: none).
     double
