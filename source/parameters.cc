@@ -145,11 +145,11 @@ namespace densify
       prm.add_parameter(
         "Polynomial degree",
         mesh.degree,
-        "Polynomial degree of the displacement on each tetrahedron: 1 "
-        "(linear, with the Volumetric locking remedy; the compaction "
-        "scenes) or 2 (quadratic: smoother stresses and contact pressures, "
-        "several times the unknowns of the same mesh; the single-sphere and "
-        "Hertz scenes).",
+        "Polynomial degree of the displacement on each tetrahedron, 1 or 2 "
+        "(integer): 1 (linear, with the Volumetric locking remedy; the "
+        "compaction scenes) or 2 (quadratic: smoother stresses and contact "
+        "pressures, several times the unknowns of the same mesh; the "
+        "single-sphere and Hertz scenes).",
         Patterns::Integer(1, 2));
       prm.add_parameter(
         "Volumetric locking remedy",
