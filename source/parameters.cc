@@ -364,8 +364,8 @@ namespace densify
         contact.friction_model,
         "'Coulomb': stick below mu p, slip at mu p (return map, penalty "
         "stick stiffness); 'arctangent': the paper's regularised law "
-        "t = mu p (2/pi) atan(v/v0) against the sliding velocity v, to "
-        "reproduce the paper's law.",
+        "t = mu p (2/pi) atan(v/v0) against the sliding velocity v, for "
+        "comparisons with the paper.",
         Patterns::Selection("Coulomb|arctangent"));
       prm.add_parameter("Slip velocity",
                         contact.slip_velocity,
