@@ -6,8 +6,8 @@ density at the end of each block, then the totals.
 Usage (from the source root):
   python3 benchmarks/step_blocks.py OUTPUT_DIR/statistics.csv [steps per block]
 
-The whole-run figures of doc/performance.md ("The whole full-fidelity run
-again, session 15") were made with it from
+The block-by-block figures of doc/performance.md ("The paper's scene, block
+by block") come from it, after
   mpirun -np 2 build/densify prm/single_layer_sn.prm --set Output/Directory=DIR
 """
 import csv

@@ -25,108 +25,131 @@ namespace densify
       prm.add_parameter(
         "Packing",
         particles.packing,
-        "'list': the particles of Centres (or of the particle file); "
-        "'hexagonal layer': one layer of equal spheres (the first Diameter, "
-        "the first Material) on a hexagonal lattice whose neighbours touch, "
-        "clipped to the die (Tools/Die wall/Diameter), resting on the lower "
-        "punch; 'random layer': Number of particles such spheres placed by "
-        "random sequential addition with Packing seed, then moved towards "
-        "the axis until they touch. The initial relative density is printed "
-        "(also by --validate).",
+        "How the particles are placed. 'list': the particles of Centres (or "
+        "of Particle file), for a scene of your own; 'hexagonal layer': one "
+        "layer of equal spheres (the first Diameter and Material) on a "
+        "hexagonal lattice whose neighbours touch, clipped to the die "
+        "(Tools/Die wall/Diameter), resting on the lower punch; 'random "
+        "layer': Number of particles such spheres placed at random (Packing "
+        "seed), then moved towards the axis until they touch. The initial "
+        "relative density is printed (also by --validate).",
         Patterns::Selection("list|hexagonal layer|random layer"));
       prm.add_parameter("Number of particles",
                         particles.n_particles,
-                        "Particles of the random layer (> 0).",
+                        "Number of spheres of Packing = random layer "
+                        "(integer >= 1); other packings ignore it.",
                         Patterns::Integer(1));
       prm.add_parameter("Packing seed",
                         particles.packing_seed,
-                        "Seed of the random layer (the same seed gives the "
-                        "same layer).");
+                        "Seed of the random layer (integer >= 0); the same "
+                        "seed gives the same layer, another seed another "
+                        "layer of the same kind.");
       prm.add_parameter(
         "Hexagonal placement",
         particles.hexagonal_placement,
-        "Where the die axis sits in the hexagonal layer: on a particle "
-        "centre (d = 2.5 mm in a 20 mm die: 43 particles, the reference "
-        "paper's layer), on a triangle's centre (42), on the contact point "
-        "of two particles (48), or the placement with the most particles.",
+        "Packing = hexagonal layer only: where the die axis sits in the "
+        "lattice: on a particle centre (d = 2.5 mm in a 20 mm die: 43 "
+        "particles, the reference paper's layer), on a triangle's centre "
+        "(42), on the contact point of two particles (48), or the placement "
+        "that fits the most particles.",
         Patterns::Selection(
           "particle centred|hole centred|edge centred|most particles"));
       prm.add_parameter(
         "Centres",
         particles.centres,
-        "Particle centres 'x,y,z; x,y,z; ...' in mm (die axis = z axis). "
-        "Ignored when a particle file is given or Packing is not list.");
+        "Particle centres 'x,y,z; x,y,z; ...' in mm (die axis = z axis); "
+        "particles may touch but not overlap, and lie between the punches "
+        "and inside the die. Packing = list only; a particle file replaces "
+        "it.");
       prm.add_parameter(
         "Diameters",
         particles.diameters,
-        "Particle diameters in mm, > 0: one value for all particles, or a "
-        "comma-separated list with one value per centre.");
+        "Particle diameters in mm (> 0): one value for all particles, or a "
+        "comma-separated list with one value per centre; a generated layer "
+        "takes the first.");
       prm.add_parameter(
         "Materials",
         particles.materials,
-        "Particle materials (Sn, Fe, Cu or custom): one name for all "
+        "Particle materials: Sn, Fe, Cu (presets, doc/materials.md) or "
+        "custom (the constants of subsection Material); one name for all "
         "particles, or a comma-separated list with one name per centre. "
         "Used where the particle file has no material column.");
       prm.add_parameter(
         "Particle file",
         particles.particle_file,
-        "CSV file with one particle per line: x,y,z,diameter[,material] in "
-        "mm; '#' starts a comment; a header line is skipped. Relative paths "
-        "are relative to the working directory. Empty: use Centres.");
+        "CSV file with one particle per line, x,y,z,diameter[,material] in "
+        "mm ('#' starts a comment; a header line is skipped), relative to "
+        "the working directory; for scenes with many particles (Packing = "
+        "list). Empty: use Centres.");
       prm.add_parameter(
         "Material fractions",
         particles.material_fractions,
-        "A mixture 'name:fraction, name:fraction, ...' (fractions >= 0, "
-        "summing to 1): that share of the particles (rounded to whole "
+        "A mixed powder 'name:fraction, name:fraction, ...' (fractions "
+        ">= 0, summing to 1): that share of the particles (rounded to whole "
         "particles) gets each material, drawn at random with Material seed. "
         "Overrides Materials and the particle file's material column. "
         "Empty: no mixture.");
       prm.add_parameter("Material seed",
                         particles.material_seed,
-                        "Seed of the random draw of Material fractions (the "
-                        "same seed gives the same mixture).");
+                        "Seed of the random draw of Material fractions "
+                        "(integer >= 0); the same seed gives the same "
+                        "mixture, another seed another one with the same "
+                        "fractions.");
       prm.add_parameter(
         "Body force",
         particles.body_force,
-        "Force per volume 'bx,by,bz' on every particle, in N/mm^3 (gravity: "
-        "0,0,-rho g; 0,0,0 switches it off at no cost).");
+        "Force per volume 'bx,by,bz' on every particle, in N/mm^3, any "
+        "values: e.g. gravity 0,0,-rho g (tin: 0,0,-7.15e-5) or a sideways "
+        "pull. 0,0,0 switches it off at no cost.");
       prm.add_parameter(
         "Body force history",
         particles.body_force_history,
-        "Factor on the body force against time, as 't:f, t:f, ...' pairs "
-        "(s:-), linearly interpolated.");
+        "Dimensionless factor on Body force against time, as 't:f, t:f, "
+        "...' pairs (t in s, increasing), linearly interpolated and "
+        "constant beyond the ends; to ramp the body force or switch it "
+        "during a run.");
     }
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh");
     {
-      prm.add_parameter("Element size",
-                        mesh.element_size,
-                        "Target tetrahedron edge length away from refinement "
-                        "points, in mm (> 0).",
-                        Patterns::Double(1e-6));
+      prm.add_parameter(
+        "Element size",
+        mesh.element_size,
+        "Target tetrahedron edge length away from refinement points, in mm "
+        "(> 0). Smaller: more accurate contact shapes and forces, at a cost "
+        "that grows about as 1/size^3 (the paper's scenes: 0.3 mm for "
+        "2.5 mm spheres; the light scene: 0.5 mm).",
+        Patterns::Double(1e-6));
       prm.add_parameter(
         "Refinement directions",
         mesh.refinement_directions,
         "Directions 'x,y,z; x,y,z' from each particle's centre to surface "
-        "points where the mesh is refined (e.g. '0,0,1; 0,0,-1' for the "
-        "poles that touch the punches). Empty: uniform mesh.");
+        "points where the mesh is refined, for contacts at known points "
+        "(e.g. '0,0,1; 0,0,-1' for the poles that touch the punches). "
+        "Empty: uniform mesh.");
       prm.add_parameter("Refined element size",
                         mesh.refined_element_size,
-                        "Element size at the refinement points, in mm (> 0).",
+                        "Element size at the refinement points, in mm (> 0, "
+                        "below Element size); used with Refinement "
+                        "directions only.",
                         Patterns::Double(1e-6));
       prm.add_parameter(
         "Refinement growth",
         mesh.growth,
         "Growth of the element size with distance d (mm) from the nearest "
         "refinement point: h = min(Element size, Refined element size + "
-        "growth * d); dimensionless, > 0.",
+        "growth * d); dimensionless, > 0. Smaller: a wider refined region, "
+        "more elements.",
         Patterns::Double(1e-3));
       prm.add_parameter(
         "Polynomial degree",
         mesh.degree,
-        "Polynomial degree of the displacement on each tetrahedron: 1 (linear) "
-        "or 2 (quadratic).",
+        "Polynomial degree of the displacement on each tetrahedron, 1 or 2 "
+        "(integer): 1 (linear, with the Volumetric locking remedy; the "
+        "compaction scenes) or 2 (quadratic: smoother stresses and contact "
+        "pressures, several times the unknowns of the same mesh; the "
+        "single-sphere and Hertz scenes).",
         Patterns::Integer(1, 2));
       prm.add_parameter(
         "Volumetric locking remedy",
@@ -135,18 +158,18 @@ namespace densify
         "isochoric plastic flow. nodal averaging: F-bar with the volume "
         "ratio averaged over the cells around each vertex (Bonet & Burton "
         "1998; doc/theory.md); Polynomial degree = 1 only. none: plain "
-        "elements. auto: nodal averaging for Polynomial degree = 1 with "
-        "Material/Model = J2 plasticity, none otherwise (quadratic "
-        "tetrahedra do not lock).",
+        "elements. auto (keep it unless comparing): nodal averaging for "
+        "Polynomial degree = 1 with Material/Model = J2 plasticity, none "
+        "otherwise (quadratic tetrahedra do not lock).",
         Patterns::Selection("auto|nodal averaging|none"));
       prm.add_parameter(
         "Maximum elements",
         mesh.max_elements,
         "A run refuses a scene whose estimated number of tetrahedra "
         "(particles times the elements of each, from its diameter and the "
-        "element sizes) exceeds this, before meshing; --validate prints the "
-        "estimate and the memory it needs. Raise it for large scenes on a "
-        "large machine.",
+        "element sizes) exceeds this (integer >= 1), before meshing; "
+        "--validate prints the estimate and the memory it needs. Raise it "
+        "for large scenes on a large machine.",
         Patterns::Integer(1));
     }
     prm.leave_subsection();
@@ -160,51 +183,60 @@ namespace densify
         "small-strain linear or finite-strain Hencky) or J2 plasticity "
         "(finite-strain von Mises elastoplasticity, Simo 1992; "
         "doc/theory.md). The material of each particle (Sn, Fe, Cu, custom) "
-        "gives E, nu and the yield stress. J2 plasticity needs Finite strain "
-        "= true and works for single particles and for layers of touching "
-        "particles in a die (prm/single_layer_sn.prm); elastic suits small "
-        "deformations and verification (prm/hertz.prm).",
+        "gives E, nu and the yield stress. J2 plasticity (needs Finite "
+        "strain = true) is for compaction: single particles and layers of "
+        "touching particles in a die (prm/single_layer_sn.prm); elastic for "
+        "small deformations and verification (prm/hertz.prm).",
         Patterns::Selection("elastic|J2 plasticity"));
       prm.add_parameter(
         "Finite strain",
         material.finite_strain,
-        "true: finite-strain kinematics (large rotations, Hencky strain); "
-        "see Model. false: small-strain linear elasticity, for "
-        "small deformations only (allowed with Model = elastic only).");
+        "true: finite-strain kinematics (large rotations, Hencky strain), "
+        "needed by J2 plasticity and by any large deformation. false: "
+        "small-strain linear elasticity (Model = elastic only), for small "
+        "deformations such as checks against linear theory.");
       prm.add_parameter(
         "Hardening",
         material.hardening,
-        "Isotropic hardening of every J2 material: none (perfectly plastic, "
-        "as the presets), linear (sigma_y = sigma0 + H eps_p) or power law "
-        "(sigma_y = sigma0 + K eps_p^n).",
+        "Isotropic hardening of every J2 material, presets included: none "
+        "(perfectly plastic, as the presets' data), linear (sigma_y = "
+        "sigma0 + H eps_p, Hardening modulus) or power law (sigma_y = "
+        "sigma0 + K eps_p^n, Hardening coefficient and exponent); for a "
+        "powder that work-hardens.",
         Patterns::Selection("none|linear|power law"));
       prm.add_parameter("Yield stress",
                         material.yield_stress,
                         "Initial yield stress sigma0 of the material 'custom', "
-                        "in MPa (> 0).",
+                        "in MPa (> 0); the presets carry their own "
+                        "(doc/materials.md).",
                         Patterns::Double(0.));
       prm.add_parameter("Hardening modulus",
                         material.hardening_modulus,
-                        "Linear hardening modulus H, in MPa (>= 0).",
+                        "Linear hardening modulus H, in MPa (>= 0); "
+                        "Hardening = linear only.",
                         Patterns::Double(0.));
       prm.add_parameter("Hardening coefficient",
                         material.hardening_coefficient,
-                        "Power-law hardening coefficient K, in MPa (>= 0).",
+                        "Power-law hardening coefficient K, in MPa (>= 0); "
+                        "Hardening = power law only.",
                         Patterns::Double(0.));
       prm.add_parameter("Hardening exponent",
                         material.hardening_exponent,
-                        "Power-law hardening exponent n (dimensionless, > 0).",
+                        "Power-law hardening exponent n (dimensionless, > 0); "
+                        "Hardening = power law only.",
                         Patterns::Double(1e-6));
       prm.add_parameter(
         "Young's modulus",
         material.youngs_modulus,
-        "Young's modulus of the material 'custom', in MPa (> 0). The presets "
-        "Sn, Fe and Cu carry their own values (doc/materials.md).",
+        "Young's modulus of the material 'custom', in MPa (> 0, at most "
+        "1e7). The presets Sn, Fe and Cu carry their own values "
+        "(doc/materials.md).",
         Patterns::Double(1e-12));
       prm.add_parameter("Poisson's ratio",
                         material.poissons_ratio,
                         "Poisson's ratio of the material 'custom' "
-                        "(dimensionless, -1 < nu < 0.5).",
+                        "(dimensionless, -1 < nu < 0.5); the presets carry "
+                        "their own.",
                         Patterns::Double(-0.999, 0.499));
       prm.add_parameter(
         "Density",
@@ -221,62 +253,73 @@ namespace densify
       prm.enter_subsection("Lower punch");
       prm.add_parameter("Enabled",
                         tools.lower_enabled,
-                        "Whether the rigid lower punch (plane z = Position, "
-                        "particles above it) takes part.");
+                        "Whether the rigid lower punch (the plane z = "
+                        "Position, particles above it) takes part; false for "
+                        "a scene without it.");
       prm.add_parameter("Position",
                         tools.lower_position,
-                        "Height of the lower punch face, in mm. It does not "
-                        "move.");
+                        "Height z of the lower punch face, in mm (any value "
+                        "below the particles). It does not move.");
       prm.add_parameter("Friction coefficient",
                         tools.lower_friction,
                         "Coulomb coefficient between the particles and the "
-                        "lower punch (>= 0), or 'default' for "
-                        "Contact/Friction coefficient.");
+                        "lower punch (dimensionless, >= 0), or 'default' for "
+                        "Contact/Friction coefficient; set a number for a "
+                        "punch lubricated otherwise.");
       prm.leave_subsection();
 
       prm.enter_subsection("Upper punch");
       prm.add_parameter("Enabled",
                         tools.upper_enabled,
-                        "Whether the rigid upper punch (plane, particles "
-                        "below it) takes part.");
+                        "Whether the rigid upper punch (a plane, particles "
+                        "below it, moved by Displacement history) takes "
+                        "part; false for a scene without it.");
       prm.add_parameter(
         "Initial position",
         tools.upper_initial_position,
-        "Height of the upper punch face at t = 0, in mm, or 'auto' for the "
-        "top of the highest particle.");
+        "Height of the upper punch face at t = 0, in mm (above every "
+        "particle), or 'auto' for the top of the highest particle (the "
+        "punch starts touching); a number starts with a gap.");
       prm.add_parameter(
         "Displacement history",
         tools.upper_displacement,
         "Downward displacement of the upper punch against time, as "
-        "'t:d, t:d, ...' pairs (s:mm), linearly interpolated and constant "
-        "beyond the last time. Positive values compress.");
+        "'t:d, t:d, ...' pairs (t in s, increasing; d in mm, positive "
+        "compresses), linearly interpolated and constant beyond the last "
+        "time. The stroke sets the final density; a flat segment holds, a "
+        "falling one unloads.");
       prm.add_parameter(
         "Lateral displacement history",
         tools.upper_lateral_displacement,
         "Sideways (x) displacement of the upper punch against time, as "
-        "'t:d, ...' pairs (s:mm); it drags the particles through friction "
-        "(e.g. a sliding test).");
+        "'t:d, ...' pairs (s:mm); it drags the particles through friction. "
+        "0:0: none; set it for a shear or sliding test.");
       prm.add_parameter("Friction coefficient",
                         tools.upper_friction,
                         "Coulomb coefficient between the particles and the "
-                        "upper punch (>= 0), or 'default' for "
-                        "Contact/Friction coefficient.");
+                        "upper punch (dimensionless, >= 0), or 'default' for "
+                        "Contact/Friction coefficient; set a number for a "
+                        "punch lubricated otherwise.");
       prm.leave_subsection();
 
       prm.enter_subsection("Die wall");
       prm.add_parameter("Enabled",
                         tools.die_enabled,
                         "Whether the rigid cylindrical die wall (axis = z "
-                        "axis) takes part.");
+                        "axis) takes part; false for particles pressed "
+                        "between the punches only (e.g. one sphere).");
       prm.add_parameter("Diameter",
                         tools.die_diameter,
-                        "Inner diameter of the die, in mm (> 0).",
+                        "Inner diameter of the die, in mm (> 0; the "
+                        "particles lie inside). With a generated layer it "
+                        "also sets how many particles fit.",
                         Patterns::Double(1e-6));
       prm.add_parameter("Friction coefficient",
                         tools.die_friction,
                         "Coulomb coefficient between the particles and the "
-                        "die wall (>= 0), or 'default' for "
-                        "Contact/Friction coefficient.");
+                        "die wall (dimensionless, >= 0), or 'default' for "
+                        "Contact/Friction coefficient; set a number for a "
+                        "die lubricated otherwise.");
       prm.leave_subsection();
     }
     prm.leave_subsection();
@@ -288,45 +331,55 @@ namespace densify
         contact.penalty_factor,
         "Augmented-Lagrangian penalty as a multiple of E/h (E the particle's "
         "Young's modulus in MPa, h the smallest element size in mm); "
-        "dimensionless, > 0. Larger: fewer multiplier updates, worse "
-        "conditioning.",
+        "dimensionless, > 0. The multiplier updates remove the penetration "
+        "whatever its value. Larger: fewer multiplier updates, worse "
+        "conditioned systems; change it when the updates do not reach Gap "
+        "tolerance or Newton struggles.",
         Patterns::Double(1e-12));
       prm.add_parameter(
         "Gap tolerance",
         contact.gap_tolerance,
         "Largest penetration of a particle into a tool or another particle "
-        "accepted at the end of a step, in mm (> 0); multipliers are updated "
-        "until it is met.",
+        "accepted at the end of a step, in mm (> 0, well below the element "
+        "size); multipliers are updated until it is met. Smaller: more "
+        "accurate contact, more updates.",
         Patterns::Double(1e-15));
-      prm.add_parameter("Maximum augmentations",
-                        contact.max_augmentations,
-                        "Maximum number of multiplier updates per load step.",
-                        Patterns::Integer(0, 1000));
+      prm.add_parameter(
+        "Maximum augmentations",
+        contact.max_augmentations,
+        "Maximum number of multiplier updates per load step (integer 0 to "
+        "1000; 0: pure penalty). A step that ends above Gap tolerance prints "
+        "a warning; raise it then.",
+        Patterns::Integer(0, 1000));
       prm.add_parameter(
         "Friction coefficient",
         contact.friction_coefficient,
         "Coulomb friction coefficient mu between particles, and of every tool "
-        "whose own Friction coefficient is 'default' (>= 0). 0 switches "
-        "friction off and costs nothing.",
+        "whose own Friction coefficient is 'default' (dimensionless, >= 0; "
+        "the paper's scenes: 0.2). 0 switches friction off and costs "
+        "nothing.",
         Patterns::Double(0.));
       prm.add_parameter(
         "Friction model",
         contact.friction_model,
         "'Coulomb': stick below mu p, slip at mu p (return map, penalty "
         "stick stiffness); 'arctangent': the paper's regularised law "
-        "t = mu p (2/pi) atan(v/v0) against the sliding velocity v.",
+        "t = mu p (2/pi) atan(v/v0) against the sliding velocity v, for "
+        "comparisons with the paper.",
         Patterns::Selection("Coulomb|arctangent"));
       prm.add_parameter("Slip velocity",
                         contact.slip_velocity,
                         "v0 of the arctangent law, in mm/s (> 0): below it "
-                        "the traction grows linearly with the velocity.",
+                        "the traction grows linearly with the velocity. "
+                        "Smaller: closer to Coulomb, harder for Newton.",
                         Patterns::Double(1e-300));
       prm.add_parameter(
         "Tangential penalty factor",
         contact.tangential_penalty_factor,
-        "Stick stiffness of Coulomb friction as a multiple of E/h (> 0): "
-        "a sticking point slips elastically by t h / (factor E). Much "
-        "stiffer than needed slows Newton where points slip.",
+        "Stick stiffness of Coulomb friction as a multiple of E/h "
+        "(dimensionless, > 0): a sticking point slips elastically by "
+        "t h / (factor E). Much stiffer than needed slows Newton where "
+        "points slip.",
         Patterns::Double(1e-12));
       prm.add_parameter(
         "Friction tangent",
@@ -334,8 +387,8 @@ namespace densify
         "'symmetric': the slip tangent without its nonsymmetric coupling to "
         "the pressure (CG works; Newton converges only linearly where "
         "points slip); 'consistent': with it (quadratic Newton near slip, "
-        "needs Solver/Linear solver = gmres-amg, direct or auto); 'auto': "
-        "consistent unless Solver/Linear solver = cg-amg.",
+        "needs Solver/Linear solver = gmres-amg, gmres-lu, direct or auto); "
+        "'auto' (keep it): consistent unless Solver/Linear solver = cg-amg.",
         Patterns::Selection("auto|symmetric|consistent"));
       prm.add_parameter(
         "Geometric tangent",
@@ -343,49 +396,39 @@ namespace densify
         "Whether the Newton tangent of particle-particle contact includes "
         "the rotation of the master facet's normal and the sliding of the "
         "projection point over the facet (doc/theory.md section 9). true: "
-        "exact for P1 and P2 contact, with or without friction "
-        "(tests/contact_tangent.cc), quadratic Newton where contacts slide "
-        "over facets, but not symmetric (needs Solver/Linear solver = "
+        "exact for P1 and P2 contact, quadratic Newton where contacts slide "
+        "over facets, but nonsymmetric (needs Solver/Linear solver = "
         "gmres-amg, gmres-lu or direct); false: only eps n n^T and the "
-        "friction law's stiffness (symmetric without friction, CG works; "
-        "Newton slows where contacts slide); auto: true for frictionless "
-        "particle contact unless the linear solver is cg-amg, false with "
-        "friction (where it can overshoot in dense packings; "
-        "doc/performance.md). It changes how Newton converges, not the "
-        "converged answer. Change it when Newton stalls on sliding "
-        "contacts.",
+        "friction law's stiffness; auto: true for frictionless particle "
+        "contact unless the linear solver is cg-amg, false with friction. "
+        "It changes how Newton converges, not the converged answer; change "
+        "it when Newton stalls on sliding contacts.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
         contact.contact_points,
         "Where contact with tools and other particles is evaluated on a "
         "particle's surface facets. 'vertices': at the facet corners (node "
-        "to surface, weights area/3; the first point to touch is a mesh "
-        "vertex, e.g. a sphere's pole, so a faceted sphere is pressed "
-        "without a spurious moment); 'Gauss points': at the facet's Gauss "
-        "points (needed for P2, whose vertex weights vanish); 'auto': "
-        "vertices for P1, Gauss points for P2.",
+        "to surface, weights area/3; a faceted sphere's pole touches first, "
+        "so it is pressed without a spurious moment); 'Gauss points': at "
+        "the facet's Gauss points (needed for P2, whose vertex weights "
+        "vanish); 'auto' (keep it): vertices for P1, Gauss points for P2.",
         Patterns::Selection("auto|vertices|Gauss points"));
       prm.add_parameter(
         "Hold poles on axis",
         contact.hold_poles,
-        "true: horizontal springs (stiffness Penalty factor * E * h, in both "
-        "residual and tangent) hold the top and bottom pole vertices of every "
-        "particle on the vertical line through its initial centre, for "
-        "frictionless scenes whose exact solution is axisymmetric (one sphere "
-        "or a vertical stack between punches): at finite strain a faceted "
-        "sphere can otherwise turn a facet towards a punch at no cost, and "
-        "its tipping makes Newton stall (doc/theory.md). vertical: springs "
-        "of the same stiffness between the two poles of each particle keep "
-        "the axis through them vertical but let the particle move sideways, "
-        "for frictionless layers whose exact solution is symmetric about "
-        "each particle's mid-plane. With true and more than one particle (a "
-        "stack), one more spring per particle, between the top pole and the "
-        "surface vertex farthest along +x, holds the spin about the vertical "
-        "axis, which frictionless contact leaves free but for the faceting. "
-        "The springs' force is reported as "
-        "pole_force in statistics.csv and in the log; it vanishes for a "
-        "state with that symmetry. false: no springs.",
+        "Springs (stiffness Penalty factor * E * h) against the free motions "
+        "that frictionless contact leaves to a faceted sphere, which make "
+        "Newton stall (doc/theory.md). true: the top and bottom pole "
+        "vertices stay on the vertical line through the initial centre, "
+        "for one sphere or a vertical stack between frictionless punches "
+        "(in a stack one more spring per particle holds its spin about the "
+        "vertical axis). vertical: the axis through each particle's poles "
+        "stays vertical, the particle may move sideways, for frictionless "
+        "layers symmetric about each particle's mid-plane. false: no "
+        "springs. The springs' force is "
+        "pole_force in statistics.csv; it vanishes for a state with that "
+        "symmetry.",
         Patterns::Selection("false|true|vertical"));
     }
     prm.leave_subsection();
@@ -394,22 +437,27 @@ namespace densify
     {
       prm.add_parameter("End time",
                         time.end_time,
-                        "Time at the end of the run, in s (> 0); the process "
-                        "is quasi-static, time only orders the load.",
+                        "Time at the end of the run, in s (> 0), the time "
+                        "of the load histories. Implicit runs are "
+                        "quasi-static: time only orders the load; explicit "
+                        "runs map it onto Explicit/Loading time.",
                         Patterns::Double(1e-15));
       prm.add_parameter("Number of steps",
                         time.n_steps,
-                        "Number of equal load steps from t = 0 to the end "
-                        "time (>= 1).",
+                        "Number of equal load steps from t = 0 to End time "
+                        "(integer >= 1), each a row of statistics.csv. "
+                        "More: smaller increments, easier Newton, longer "
+                        "runs; raise it when many steps need cut-backs.",
                         Patterns::Integer(1));
       prm.add_parameter(
         "Maximum cut-backs",
         time.max_cutbacks,
         "A load increment that does not converge is rolled back and retried "
         "with half the increment, at most this many times in a row within "
-        "one load step and never below 2^-N of a step (N this number); the "
-        "increment grows again after easy increments and every load step "
-        "still ends at its own time. 0: no cut-back.",
+        "one load step and never below 2^-N of a step (N this number, "
+        "integer 0 to 30); the increment grows again after easy increments "
+        "and every load step still ends at its own time. 0: no cut-back; "
+        "raise it when a run stops on a hard step.",
         Patterns::Integer(0, 30));
     }
     prm.leave_subsection();
@@ -423,8 +471,9 @@ namespace densify
         "step (the entries below). explicit: central-difference dynamics "
         "with a lumped mass, mass scaling and penalty contact over the same "
         "element, material and contact law, no linear solve (subsection "
-        "Explicit; doc/theory.md); the load steps become the stations where "
-        "statistics, graphics and checkpoints are written.",
+        "Explicit; doc/theory.md), for high-speed compaction where inertia "
+        "matters; the load steps become the stations where statistics, "
+        "graphics and checkpoints are written.",
         Patterns::Selection("implicit|explicit"));
       prm.add_parameter(
         "Linear solver",
@@ -432,73 +481,80 @@ namespace densify
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
         "the six rigid-body modes (scales to large problems); gmres-amg: "
         "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
-        "tangent = consistent); direct: Amesos MUMPS (small problems only); "
+        "tangent = consistent); direct: MUMPS (a few thousand unknowns); "
         "gmres-lu: GMRES preconditioned by the MUMPS factorization of an "
         "earlier tangent, factorized anew when GMRES needs more than 20 "
-        "iterations (saves most factorizations where the tangent changes "
-        "little between Newton iterations and steps); auto: gmres-amg where "
-        "friction acts with the consistent tangent or where Contact/Geometric "
-        "tangent = true, cg-amg otherwise.",
+        "iterations, which saves factorizations where the tangent changes "
+        "little (the paper's scenes); auto: gmres-amg where friction acts with "
+        "the consistent tangent or where Contact/Geometric tangent = true, "
+        "cg-amg otherwise.",
         Patterns::Selection("auto|cg-amg|gmres-amg|direct|gmres-lu"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,
-                        "CG stops when the residual falls below this times "
-                        "the right-hand side norm (dimensionless).",
+                        "CG and GMRES stop when the residual falls below this "
+                        "times the right-hand side norm (dimensionless, "
+                        "1e-16 to 1). Larger: cheaper solves, more Newton "
+                        "iterations.",
                         Patterns::Double(1e-16, 1.));
       prm.add_parameter(
         "Adaptive linear tolerance",
         solver.adaptive_linear_tolerance,
-        "Inexact Newton: each Newton iteration solves the linear system only "
-        "as accurately as the convergence of the residual so far can use "
-        "(Eisenstat-Walker: 0.9 (|R_k|/|R_k-1|)^2, between Linear tolerance "
-        "and 1e-2, and no tighter than the Newton target needs). The "
-        "converged answer meets the same Newton tolerance; the Krylov "
-        "solvers need fewer iterations, gmres-lu fewer factorizations. "
-        "No effect with direct.");
+        "true: inexact Newton: each Newton iteration solves the linear "
+        "system only as accurately as the convergence of the residual so "
+        "far can use (Eisenstat-Walker: 0.9 (|R_k|/|R_k-1|)^2, between "
+        "Linear tolerance and 1e-2, and no tighter than the Newton target "
+        "needs). The converged answer meets the same Newton tolerance; the "
+        "Krylov solvers need fewer iterations, gmres-lu fewer "
+        "factorizations. No effect with direct.");
       prm.add_parameter("Maximum linear iterations",
                         solver.max_linear_iterations,
-                        "Maximum number of CG iterations per Newton step.",
+                        "Maximum number of CG or GMRES iterations per linear "
+                        "solve (integer >= 1); raise it when a linear solve "
+                        "stops on it.",
                         Patterns::Integer(1));
       prm.add_parameter(
         "Reuse AMG",
         solver.reuse_amg,
-        "Keep the AMG hierarchy across Newton iterations and load steps until "
-        "CG needs more than twice the iterations it needed right after the "
-        "last setup (plus 10); false: a new setup for every linear solve.");
+        "true: keep the AMG hierarchy across Newton iterations and load "
+        "steps until CG needs more than twice the iterations it needed "
+        "right after the last setup (plus 10); false: a new setup for every "
+        "linear solve.");
       prm.add_parameter(
         "Newton tolerance",
         solver.newton_tolerance,
         "Newton stops when the l2 norm of the out-of-balance force falls "
         "below this times the larger of the internal and contact force "
-        "norms (dimensionless).",
+        "norms (dimensionless, 1e-16 to 1; the paper's scenes: 1e-6). "
+        "Smaller: more accurate equilibrium, more iterations.",
         Patterns::Double(1e-16, 1.));
       prm.add_parameter("Maximum Newton iterations",
                         solver.max_newton_iterations,
-                        "Maximum Newton iterations per multiplier update.",
+                        "Maximum Newton iterations per multiplier update "
+                        "(integer >= 1); an increment that needs more is cut "
+                        "back (the paper's scenes: 60).",
                         Patterns::Integer(1));
       prm.add_parameter(
         "Line search",
         solver.line_search,
         "How far each Newton iteration goes along its correction du. "
         "residual: halve the step until the out-of-balance force |R| falls "
-        "(monotone, robust, but where a full step closes new contact points "
-        "the stiff penalty makes |R| rise and the steps become short). "
-        "energy: the step s where R(u + s du).du, the derivative of the "
-        "incremental energy along du, has fallen to half its size at s = 0 "
-        "or below (regula falsi, at most 9 trials); it stops where newly "
-        "closing contact points balance the rest of the out-of-balance force, "
-        "so |R| may rise for an iteration. Where du is no descent direction "
-        "(R.du >= 0) the residual search is used.",
+        "(monotone, robust, but short steps where a full step closes new "
+        "contact points). energy: the step s where R(u + s du).du, the "
+        "derivative of the incremental energy along du, has fallen to half "
+        "its size at s = 0 or below (regula falsi, at most 9 trials), so "
+        "|R| may rise for an iteration; for many closing contacts (the "
+        "paper's scenes). Where du is no descent direction the residual "
+        "search is used.",
         Patterns::Selection("residual|energy"));
       prm.add_parameter(
         "Stabilisation",
         solver.stabilisation,
-        "beta >= 0: the Newton tangent (never the residual) gets beta*E/D^2 "
-        "times the mass matrix of each particle (E its Young's modulus, D its "
-        "diameter), so that a particle without contact does not make the "
-        "system singular. The converged state is not biased; the force it "
-        "contributes to the last Newton correction is reported. "
-        "Dimensionless.",
+        "beta >= 0 (dimensionless): the Newton tangent (never the residual) "
+        "gets beta*E/D^2 times the mass matrix of each particle (E its "
+        "Young's modulus, D its diameter), so that a particle without "
+        "contact does not make the system singular. The converged state is "
+        "not biased; the force it contributes to the last Newton correction "
+        "is reported. Raise it when a free particle makes the solve fail.",
         Patterns::Double(0.));
       prm.add_parameter(
         "Reproducible",
@@ -506,10 +562,10 @@ namespace densify
         "true: the direct solvers (Linear solver = direct or gmres-lu) "
         "gather the matrix on rank 0 and factorize it there with sequential "
         "MUMPS, so that a run on several MPI ranks gives the same result "
-        "every time; false: MUMPS works on all ranks, whose asynchronous "
-        "scheduling changes the round-off from run to run (faster "
-        "factorizations on several ranks; doc/performance.md). No effect on "
-        "one rank or with the AMG solvers, which repeat exactly anyway.",
+        "every time; false: MUMPS works on all ranks (faster on several "
+        "ranks), whose asynchronous scheduling changes the round-off from "
+        "run to run. No effect on one rank or with the AMG solvers, which "
+        "repeat exactly anyway.",
         Patterns::Bool());
     }
     prm.leave_subsection();
@@ -528,9 +584,9 @@ namespace densify
         "Number of steps",
         explicit_dynamics.n_steps,
         "Explicit time steps over the whole load history when mass scaling "
-        "sets the step (>= 10). More steps: a slower load against the "
-        "particles' vibrations, so less kinetic energy and a result closer "
-        "to the quasi-static one, at proportional cost.",
+        "sets the step (integer >= 10). More steps: a slower load against "
+        "the particles' vibrations, so less kinetic energy and a result "
+        "closer to the quasi-static one, at proportional cost.",
         Patterns::Integer(10));
       prm.add_parameter(
         "Mass scaling",
@@ -539,51 +595,51 @@ namespace densify
         "below the target step (Loading time / Number of steps) is raised "
         "until it reaches it; uniform: every element's density by the one "
         "factor the smallest element needs; none: physical densities, the "
-        "stable step sets the number of steps. The added mass is reported.",
+        "stable step sets the number of steps (for high-speed compaction). "
+        "The added mass is reported.",
         Patterns::Selection("selective|uniform|none"));
       prm.add_parameter(
         "Time step safety",
         explicit_dynamics.safety,
         "Time step as a fraction of the stable step computed from the "
-        "elements and the contact springs (0 < s <= 10). That step is a "
-        "lower bound of the true limit (doc/theory.md), so values somewhat "
-        "above 1 may still run; a run that goes unstable is stopped with a "
-        "message.",
+        "elements and the contact springs (dimensionless, 0 < s <= 10). "
+        "That step is a lower bound of the true limit (doc/theory.md), so "
+        "values somewhat above 1 may still run; a run that goes unstable is "
+        "stopped with a message, lower it then.",
         Patterns::Double(1e-3, 10.));
       prm.add_parameter(
         "Ramp fraction",
         explicit_dynamics.ramp_fraction,
         "Fraction of the loading time over which the punch velocity rises "
-        "from zero along a smooth step (0 <= f < 1; 0: the punch starts at "
-        "full speed).",
+        "from zero along a smooth step (dimensionless, 0 <= f < 1; 0: the "
+        "punch starts at full speed).",
         Patterns::Double(0., 0.999));
       prm.add_parameter(
         "Damping ratio",
         explicit_dynamics.damping_ratio,
         "Mass-proportional damping, as a fraction of the critical damping of "
-        "a particle's lowest compression mode (0 <= z <= 1; 0: none). Its "
-        "work is reported in statistics.csv.",
+        "a particle's lowest compression mode (dimensionless, 0 <= z <= 1; "
+        "0: none). Raise it to calm vibrations towards a quasi-static "
+        "answer; its work is reported in statistics.csv.",
         Patterns::Double(0., 1.));
       prm.add_parameter(
         "Contact stiffness",
         explicit_dynamics.contact_stiffness,
         "Sets the contact penalty of explicit runs: the squared frequency of "
         "the stiffest contact spring as this fraction of the elements' "
-        "largest one (> 0); the stable step includes the springs. Larger: "
-        "less penetration, smaller time steps.",
+        "largest one (dimensionless, > 0); the stable step includes the "
+        "springs. Larger: less penetration, smaller time steps.",
         Patterns::Double(1e-6, 100.));
       prm.add_parameter(
         "Contact multiplier steps",
         explicit_dynamics.multiplier_steps,
         "Each contact point's multiplier lambda (the pressure is p = lambda - "
-        "eps g) follows its pressure over about this many explicit steps, "
-        "lambda += (p - lambda) / N: the penetration of lasting contacts "
-        "vanishes, so the soft penalty of explicit runs does not bias the "
-        "forces; a point contact that just closed still acts as a penalty "
-        "spring. This integral action can make an undamped contact "
-        "oscillate with growing amplitude (an elastic sphere held by stick "
-        "friction was thrown out with N = 50): use it with Damping ratio > "
-        "0 and check KE/IE. 0: pure penalty (penetration p / eps).",
+        "eps g) follows its pressure over about this many explicit steps N "
+        "(integer >= 0), lambda += (p - lambda) / N: the penetration of "
+        "lasting contacts vanishes, so the soft penalty of explicit runs "
+        "does not bias the forces. This integral action can drive an "
+        "undamped contact unstable: use it with Damping ratio > 0 and check "
+        "KE/IE. 0: pure penalty (penetration p / eps).",
         Patterns::Integer(0));
     }
     prm.leave_subsection();
@@ -592,29 +648,32 @@ namespace densify
     {
       prm.add_parameter("Directory",
                         output.directory,
-                        "Directory for statistics.csv, log.txt and graphics; "
-                        "relative to the working directory. Created if "
-                        "missing.");
+                        "Directory for statistics.csv, particles.csv, "
+                        "log.txt, graphics and checkpoints, relative to the "
+                        "working directory; created if missing. Give each "
+                        "scene its own.");
       prm.add_parameter("Interval",
                         output.interval,
-                        "Write graphics (.pvtu + .pvd) every this many steps "
-                        "and at the last step; 0: never.",
+                        "Write graphics (.pvtu + .pvd) every this many load "
+                        "steps and at the last step (integer >= 0; 0: "
+                        "never). Larger: less disk space.",
                         Patterns::Integer(0));
       prm.add_parameter("Verbose",
                         output.verbose,
-                        "Print the residual of every Newton iteration with "
-                        "the contact, slipping and yielding points (and how "
-                        "many yielding points changed), and that "
-                        "of every line-search trial with the largest tool "
-                        "and particle penetration; and for every new "
+                        "true: print the residual of every Newton iteration "
+                        "with the contact, slipping and yielding points (and "
+                        "how many yielding points changed), and that of "
+                        "every line-search trial with the largest tool and "
+                        "particle penetration; and for every new "
                         "factorization of the direct solvers MUMPS's flops, "
-                        "factor entries and largest front.");
+                        "factor entries and largest front. For diagnosing a "
+                        "run that converges slowly.");
       prm.add_parameter(
         "Checkpoint interval",
         output.checkpoint_interval,
         "Write a checkpoint (DIRECTORY/checkpoint/) every this many load "
-        "steps; 0: only when the run is stopped (SIGINT, SIGTERM, "
-        "--stop-after). densify --resume continues from it.",
+        "steps (integer >= 0; 0: only when the run is stopped by SIGINT, "
+        "SIGTERM or --stop-after). densify --resume continues from it.",
         Patterns::Integer(0));
     }
     prm.leave_subsection();

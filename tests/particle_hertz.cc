@@ -11,7 +11,7 @@
 // contact leaves free but for the faceting (the spring force is printed
 // relative to the punch force). The geometric contact tangent (on with the
 // direct solver) makes the last Newton iterations quadratic; without it and
-// the spin spring, Newton stalled with a torque about the axis (session 5).
+// the spin spring, Newton stalls with a torque about the axis.
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>

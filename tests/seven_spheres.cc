@@ -22,8 +22,8 @@
 // sideways drift is measured relative to the ring's mean rotation, which is
 // printed but not checked: 1 rank ends with a ring rotation of 0.00053 mm,
 // 2 ranks (another DoF order, so other round-off) with 0.0099 mm, and the
-// drift relative to the ring is 0.0061 and 0.0065 mm. Measured as before,
-// without that split, 2 ranks gave 0.016 mm (and MUMPS on 2 ranks, whose
+// drift relative to the ring is 0.0061 and 0.0065 mm. Measured without that
+// split, 2 ranks give 0.016 mm (and MUMPS on 2 ranks, whose
 // round-off changes from run to run, 0.0065 to 0.071 mm).
 #include <deal.II/base/mpi.h>
 

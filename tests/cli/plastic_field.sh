@@ -41,10 +41,10 @@ PY
 # of the friction at the punch faces.
 # - Frictionless (poles held): measured 1.0046, the mean 1/J at these
 #   pressures (the same sum from the displacements alone gives 1.0047);
-#   checked to 1 %. The graphics' rule until session 18 (deal.II 9.4's
-#   six-point QGaussSimplex, whose points' nearest corners carry unequal
-#   weights) gave 0.9575; the pressure of the cell's own F (the bug until
-#   session 16) gave 1.63 with friction.
+#   checked to 1 %. Two wrong rules this catches: averaging at deal.II 9.4's
+#   six-point QGaussSimplex (whose points' nearest corners carry unequal
+#   weights) gives 0.9575; the pressure of the cell's own F instead of F-bar
+#   gives 1.63 with friction.
 # - With friction 0.2 at the punches: measured 1.0236 (friction adds 1.8 %);
 #   checked to 5 %.
 virial_ratio() {
