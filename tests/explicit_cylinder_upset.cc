@@ -112,7 +112,7 @@ namespace
     {
       Vec mass;
       lumped.update(u, required_step, mass);
-      lumped.calibrate(largest_frequency2(mass), 1.25);
+      lumped.calibrate(largest_frequency2(mass), 1.25, true);
       lumped.update(u, required_step, mass);
       const std::vector<double> penalty = lumped.contact_penalties(0.25);
       std::vector<RigidTool>    tools(2);
