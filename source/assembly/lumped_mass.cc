@@ -50,6 +50,31 @@ namespace densify
         }
       return {{det / 6., trace(GG), eigenvalues(GG)[0]}};
     }
+
+    /// Volume and shape gradients of a linear tetrahedron with corners
+    /// @p x (a volume <= 0 for an inverted one).
+    double
+    tetrahedron_gradients(const std::array<Point<3>, 4> &x,
+                          std::array<Tensor<1, 3>, 4>   &g)
+    {
+      Tensor<2, 3> J;
+      for (unsigned int d = 0; d < 3; ++d)
+        for (unsigned int e = 0; e < 3; ++e)
+          J[e][d] = x[d + 1][e] - x[0][e];
+      const double det = determinant(J);
+      if (!(det > 0.))
+        return det / 6.;
+      const Tensor<2, 3> J_inv_T = transpose(invert(J));
+      g[0]                       = Tensor<1, 3>();
+      for (unsigned int a = 1; a < 4; ++a)
+        {
+          Tensor<1, 3> e;
+          e[a - 1] = 1.;
+          g[a]     = J_inv_T * e;
+          g[0] -= g[a];
+        }
+      return det / 6.;
+    }
   } // namespace
 
 
@@ -237,6 +262,82 @@ namespace densify
       calibration = std::min(1., margin * omega2 / omega_bound2);
     if (restart)
       std::fill(factor.begin(), factor.end(), 1.);
+  }
+
+
+
+  void
+  LumpedMass::stiffness_product(const TrilinosWrappers::MPI::Vector &u,
+                                const TrilinosWrappers::MPI::Vector &x,
+                                TrilinosWrappers::MPI::Vector       &Kx) const
+  {
+    // small-strain Hooke on the current cells with the volume change
+    // averaged over each vertex's patch as the nodal-averaged F-bar does:
+    // the elastic stiffness of unloading from the current state (no stress,
+    // so the plastic deformation does not count as elastic strain)
+    const MPI_Comm                comm = dof_handler->get_communicator();
+    TrilinosWrappers::MPI::Vector sums(owned, comm), volumes(owned, comm);
+    const unsigned int            n_cells = factor.size();
+    std::vector<double>           V(n_cells, 0.);
+    std::vector<std::array<Tensor<1, 3>, 4>> g(n_cells);
+    std::vector<Tensor<2, 3>>                grad(n_cells);
+    std::array<Point<3>, 4>                  corner;
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int e = cell->active_cell_index();
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              corner[v] = cell->vertex(v);
+              for (unsigned int c = 0; c < 3; ++c)
+                corner[v][c] += u(cell->vertex_dof_index(v, c));
+            }
+          V[e] = tetrahedron_gradients(corner, g[e]);
+          if (!(V[e] > 0.))
+            continue;
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < 3; ++c)
+              grad[e][c] += x(cell->vertex_dof_index(v, c)) * g[e][v];
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              sums(cell->vertex_dof_index(v, 0)) += V[e] * trace(grad[e]);
+              volumes(cell->vertex_dof_index(v, 0)) += V[e];
+            }
+        }
+    sums.compress(VectorOperation::add);
+    volumes.compress(VectorOperation::add);
+    TrilinosWrappers::MPI::Vector sums_ghosted(x), volumes_ghosted(x);
+    sums_ghosted    = sums;
+    volumes_ghosted = volumes;
+
+    Kx = 0.;
+    for (const auto &cell : dof_handler->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int e = cell->active_cell_index();
+          if (!(V[e] > 0.))
+            continue;
+          const Material &m  = *materials[cell->material_id()];
+          const double    K  = m.bulk_modulus();
+          const double    mu = 0.75 * (m.p_wave_modulus() - K);
+          // the mean of the corners' patch-averaged volume changes
+          double theta = 0.;
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const types::global_dof_index i = cell->vertex_dof_index(v, 0);
+              theta += sums_ghosted(i) / volumes_ghosted(i) / 4.;
+            }
+          const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
+          const SymmetricTensor<2, 3> sigma =
+            2. * mu * deviator(eps) + K * theta * unit_symmetric_tensor<3>();
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const Tensor<1, 3> f = V[e] * (sigma * g[e][v]);
+              for (unsigned int c = 0; c < 3; ++c)
+                Kx(cell->vertex_dof_index(v, c)) += f[c];
+            }
+        }
+    Kx.compress(VectorOperation::add);
   }
 
 

@@ -73,7 +73,19 @@ namespace densify
   void
   ExplicitDynamics::renew_mass(ExplicitSystem &system)
   {
+    const TrilinosWrappers::MPI::Vector old_mass = mass;
     stable = system.update_mass(scaled ? target_step / prm.safety : 0., mass);
+    // mass added during the run keeps each node's momentum: the kinetic
+    // energy this takes away is booked with the damping work
+    if (velocity.size() == mass.size() && old_mass.size() == mass.size())
+      for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
+        if (mass.begin()[i] != old_mass.begin()[i] && mass.begin()[i] > 0.)
+          {
+            double      &v     = velocity.begin()[i];
+            const double ratio = old_mass.begin()[i] / mass.begin()[i];
+            w_damping += old_mass.begin()[i] * v * v * (1. - ratio) / 2.;
+            v *= ratio;
+          }
     // the requested step where the mass scaling reached it, else the
     // stable step times the safety factor
     step =
@@ -244,6 +256,7 @@ namespace densify
     s.velocity   = values(velocity);
     s.internal   = values(r_internal);
     s.external   = values(r_external);
+    s.mass       = values(mass);
     s.time       = time;
     s.last_step  = last_step;
     s.steps      = n_steps;
@@ -267,6 +280,7 @@ namespace densify
     restore(saved.velocity, velocity);
     restore(saved.internal, r_internal);
     restore(saved.external, r_external);
+    restore(saved.mass, mass);
     time       = saved.time;
     last_step  = saved.last_step;
     n_steps    = saved.steps;

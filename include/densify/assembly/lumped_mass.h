@@ -107,6 +107,22 @@ namespace densify
     void
     calibrate(const double omega2, const double margin, const bool restart);
 
+    /**
+     * The product @p Kx of the elastic stiffness of the cells in their
+     * current configuration (displacement @p u, ghosted) with @p x
+     * (ghosted): small-strain Hooke's law with each particle's moduli on
+     * the deformed cells, the volume change averaged over each vertex's
+     * patch as in the nodal-averaged F-bar (section "Locking" of
+     * doc/theory.md), the stiffness that decides the stable step. It
+     * holds no stress: the plastic deformation does not enter as elastic
+     * strain, as it would with the finite-strain law on the total
+     * deformation.
+     */
+    void
+    stiffness_product(const TrilinosWrappers::MPI::Vector &u,
+                      const TrilinosWrappers::MPI::Vector &x,
+                      TrilinosWrappers::MPI::Vector       &Kx) const;
+
     /// Restore a calibration factor saved from calibration_factor().
     void
     set_calibration_factor(const double saved)

@@ -96,7 +96,7 @@ namespace densify
     /// What a checkpoint keeps (this rank's part).
     struct State
     {
-      std::vector<double> velocity, internal, external;
+      std::vector<double> velocity, internal, external, mass;
       double              time = 0., last_step = 0.;
       unsigned long long  steps = 0;
       double kinetic = 0., w_internal = 0., w_external = 0., w_damping = 0.;
@@ -105,8 +105,8 @@ namespace densify
       void
       serialize(Archive &archive, const unsigned int /*version*/)
       {
-        archive &velocity &internal &external &time &last_step &steps &kinetic
-          &w_internal &w_external &w_damping;
+        archive &velocity &internal &external &mass &time &last_step &steps
+          &kinetic &w_internal &w_external &w_damping;
       }
     };
 
