@@ -11,10 +11,14 @@
 # as many straight section edges as contact neighbours).
 # Usage (from the source root):
 #   bash benchmarks/accuracy_cost.sh [--scenes sphere,light,layer43]
-#        [--grid tiny|standard|full] [--out DIR] [--keep]
+#        [--grid tiny|standard|full] [--out DIR] [--keep] [--only REGEX]
 # Defaults: --scenes sphere,light --grid standard --out accuracy_cost.
 # Writes DIR/accuracy_cost.csv (and DIR/runs/ with each run's statistics.csv
-# and log; --keep also keeps the graphical output). Then
+# and log; --keep also keeps the graphical output; --only runs just the runs
+# whose "scene: label" matches the extended regular expression, e.g. to
+# add runs to a study: their lines of DIR/runs/list.txt go into the other
+# study's list, the reference first, and benchmarks/accuracy_cost_table.py
+# LIST . rewrites the CSV). Then
 #   python3 benchmarks/accuracy_cost_plot.py DIR/accuracy_cost.csv --out doc
 # plots error against wall time with the Pareto front and prints its table.
 # Scenes: sphere = prm/single_sphere_sn.prm pressed to 30 % height
@@ -28,17 +32,19 @@
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 densify=${DENSIFY:-$root/build/densify}
-usage='usage: bash benchmarks/accuracy_cost.sh [--scenes sphere,light,layer43] [--grid tiny|standard|full] [--out DIR] [--keep]'
+usage='usage: bash benchmarks/accuracy_cost.sh [--scenes sphere,light,layer43] [--grid tiny|standard|full] [--out DIR] [--keep] [--only REGEX]'
 scenes=sphere,light
 grid=standard
 out=accuracy_cost
 keep=false
+only=
 while [ $# -gt 0 ]; do
   case "$1" in
     --scenes) scenes=${2:?$usage}; shift 2 ;;
     --grid) grid=${2:?$usage}; shift 2 ;;
     --out) out=${2:?$usage}; shift 2 ;;
     --keep) keep=true; shift ;;
+    --only) only=${2:?$usage}; shift 2 ;;
     -h|--help) echo "$usage"; exit 0 ;;
     *) echo "accuracy_cost.sh: error: unknown argument '$1'; $usage" >&2; exit 2 ;;
   esac
@@ -85,8 +91,11 @@ case "$grid" in
     add sphere "P1 0.4/0.15 16 steps tol 1e-4" "$(p1 0.4 0.15);$(steps 16);Solver/Newton tolerance=1e-4"
     add sphere "P1 0.4/0.15 16 steps tol 1e-6" "$(p1 0.4 0.15);$(steps 16);Solver/Newton tolerance=1e-6"
     add sphere "P1 0.4/0.15 16 steps penalty 100" "$(p1 0.4 0.15);$(steps 16);Contact/Penalty factor=100"
-    # the light layer: a reduced grid (a run is about a minute)
-    add light "ref 0.4 128 steps" "Mesh/Element size=0.4"
+    # the light layer: a reduced grid (a run at 0.5 mm is about a minute,
+    # the reference at 0.3 mm about ten)
+    add light "ref 0.3 128 steps" "Mesh/Element size=0.3"
+    add light "0.35 128 steps" "Mesh/Element size=0.35"
+    add light "0.4 128 steps" "Mesh/Element size=0.4"
     add light "0.45 128 steps" "Mesh/Element size=0.45"
     add light "0.5 128 steps (scene)" ""
     add light "0.6 128 steps" "Mesh/Element size=0.6"
@@ -140,6 +149,9 @@ for run in "${runs[@]}"; do
   IFS='|' read -r scene label sets <<< "$run"
   case ",$scenes," in *",$scene,"*) ;; *) continue ;; esac
   i=$((i + 1))
+  if [ -n "$only" ] && ! printf '%s: %s\n' "$scene" "$label" | grep -qE -- "$only"; then
+    continue
+  fi
   dir=$out/runs/$(printf "%03d" $i)_$scene
   args=()
   stop=()
