@@ -7,7 +7,8 @@ Usage: accuracy_cost_table.py LIST SOURCE_ROOT > accuracy_cost.csv
 LIST has one run per line: scene, label, run directory, exit code, scene
 file, the run's own --set entries (';'-separated), tab-separated. Each run
 directory holds statistics.csv and log.txt, DIR.time holds "wall user sys".
-Settings are the scene file's values with the run's entries applied, and
+The shape's reference is the first run of the scene whose graphical output
+is there (column shape_reference). Settings are the scene file's values with the run's entries applied, and
 doc/parameters.prm's defaults for the rest.
 """
 
@@ -36,7 +37,7 @@ COLUMNS = (["scene", "label", "status"] + [c for c, _ in SETTINGS] +
            ["density_percent", "volume_change_percent", "section_area_mm2", "edges_match"] +
            [f"err_F{int(100 * f)}_percent" for f in STROKE_FRACTIONS] +
            ["err_force_percent", "err_density_pp", "err_volume_pp", "err_section_percent",
-            "err_edges"])
+            "err_edges", "shape_reference"])
 
 
 def read_prm(path):
@@ -178,8 +179,15 @@ def main():
         row["err_force_percent"] = max(errors) if not any(math.isnan(e) for e in errors) else math.nan
         row["err_density_pp"] = abs(row["density_percent"] - ref["density_percent"])
         row["err_volume_pp"] = abs(row["volume_change_percent"] - ref["volume_change_percent"])
-        row["err_section_percent"] = relative(row["section_area_mm2"], ref["section_area_mm2"])
-        row["err_edges"] = abs(row["edges_match"] - ref["edges_match"])
+        # the shape needs the graphical output, which a run may lack: its
+        # reference is the first run of the scene that has it
+        shaped = [r for r in table if r["scene"] == row["scene"] and
+                  not math.isnan(r["section_area_mm2"])]
+        shape_ref = shaped[0] if shaped else ref
+        row["shape_reference"] = shape_ref["label"]
+        row["err_section_percent"] = relative(row["section_area_mm2"],
+                                              shape_ref["section_area_mm2"])
+        row["err_edges"] = abs(row["edges_match"] - shape_ref["edges_match"])
         if row["status"] != "ok" or row["stroke_mm"] < stroke - 1e-9:
             # a run that stopped short has no error at the stroke it missed
             row["err_force_percent"] = math.nan

@@ -42,7 +42,7 @@ PY
 cat fronts.txt
 [ -s plots/accuracy_sphere.png ] && [ -s plots/accuracy_light.png ]
 grep -q "^## sphere: reference" plots/accuracy_fronts.md
-grep -q "^### punch force error" plots/accuracy_fronts.md
+grep -q "^### punch force error (%), largest" plots/accuracy_fronts.md
 grep -q "^| P1 0.7 4 steps |" plots/accuracy_fronts.md
 # bad arguments: exit 2 with one line
 rc=0
