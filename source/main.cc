@@ -195,7 +195,7 @@ main(int argc, char **argv)
   std::string summary;
   try
     {
-      read_parameters(prm, filename, overrides);
+      read_parameters(prm, filename, overrides, &parameters.fidelity_summary);
       check_parameters(parameters);
       parameters.fingerprint      = parameter_fingerprint(prm);
       const Scene        scene    = build_scene(parameters);
@@ -223,7 +223,12 @@ main(int argc, char **argv)
   if (validate_only)
     {
       if (root)
-        std::cout << filename << ": valid (" << summary << ")" << std::endl;
+        {
+          std::cout << filename << ": valid (" << summary << ")" << std::endl;
+          if (!parameters.fidelity_summary.empty())
+            std::cout << "Fidelity: " << parameters.fidelity_summary
+                      << std::endl;
+        }
       return 0;
     }
 

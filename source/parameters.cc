@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <densify/fidelity.h>
 #include <densify/ignored_parameters.h>
 #include <densify/parameters.h>
 #include <densify/utilities.h>
@@ -20,6 +21,20 @@ namespace densify
   void
   Parameters::declare(ParameterHandler &prm)
   {
+    prm.enter_subsection("Scene");
+    prm.add_parameter(
+      "Fidelity",
+      scene.fidelity,
+      "One knob for accuracy against run time: draft, standard or reference "
+      "set the element size, load steps, Newton tolerance, contact penalty "
+      "and solver settings measured in doc/accuracy.md (the banner prints "
+      "what it set), but only those entries that the parameter file and "
+      "--set leave unset: each stays overridable. as set: nothing changes. "
+      "The sizes and step counts suit 2.5 mm particles and the paper's "
+      "1.28 mm stroke; change it to trade accuracy for time.",
+      Patterns::Selection("as set|draft|standard|reference"));
+    prm.leave_subsection();
+
     prm.enter_subsection("Particles");
     {
       prm.add_parameter(
@@ -698,7 +713,8 @@ namespace densify
   void
   read_parameters(ParameterHandler               &prm,
                   const std::string              &filename,
-                  const std::vector<std::string> &overrides)
+                  const std::vector<std::string> &overrides,
+                  std::string                    *fidelity_summary)
   {
     if (std::filesystem::is_directory(filename))
       throw std::runtime_error("parameter file '" + filename +
@@ -786,6 +802,9 @@ namespace densify
           entry += (entry.empty() ? "" : "/") + part;
         set.insert(entry);
       }
+    const std::string fidelity = resolve_fidelity(prm, set);
+    if (fidelity_summary != nullptr)
+      *fidelity_summary = fidelity;
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       for (const std::string &line : ignored_parameters(prm, set))
         std::cerr << "densify: warning: " << line << std::endl;
@@ -821,6 +840,10 @@ namespace densify
           {
             const std::string entry = line.substr(4);
             const auto        eq    = entry.find('=');
+            // the fidelity level stands for the entries it set, which are
+            // in the fingerprint themselves
+            if (path.size() == 1 && path[0] == "Scene")
+              continue;
             // the friction tangent is a choice of how to solve too
             if (path.size() == 1 && path[0] == "Contact" &&
                 (Utilities::trim(entry.substr(0, eq)) == "Friction tangent" ||

@@ -1523,6 +1523,8 @@ namespace densify
             pcout << ", geometric contact tangent";
         }
       pcout << std::endl;
+      if (!prm.fidelity_summary.empty())
+        pcout << "Fidelity: " << prm.fidelity_summary << std::endl;
     }
 
     const double die_area =

@@ -241,9 +241,20 @@ namespace densify
     unsigned int checkpoint_interval = 25;
   };
 
+  /// Subsection "Scene": settings that stand for several entries.
+  struct SceneParameters
+  {
+    /// "as set" (nothing changed), "draft", "standard" or "reference": the
+    /// accuracy levers of that level for every lever entry the parameter
+    /// file and --set leave unset (resolve_fidelity(), doc/accuracy.md).
+    std::string fidelity = "as set";
+  };
+
   /// Every parameter of a run.
   struct Parameters
   {
+    /// Subsection "Scene".
+    SceneParameters scene;
     /// Subsection "Particles".
     ParticleParameters particles;
     /// Subsection "Mesh".
@@ -273,6 +284,10 @@ namespace densify
      */
     std::string fingerprint;
 
+    /// What Scene/Fidelity set, for the banner (resolve_fidelity()); empty
+    /// for "as set".
+    std::string fidelity_summary;
+
     /// Declare every entry (bound to the members above) in @p prm.
     void
     declare(ParameterHandler &prm);
@@ -283,14 +298,17 @@ namespace densify
   parameter_fingerprint(const ParameterHandler &prm);
 
   /**
-   * Read @p filename into @p prm (declared by Parameters::declare) and apply
-   * the overrides "Sub/Sub/Name=value" in order. Throws std::runtime_error with
-   * a one-line message naming the file, line or entry on any problem.
+   * Read @p filename into @p prm (declared by Parameters::declare), apply
+   * the overrides "Sub/Sub/Name=value" in order, then Scene/Fidelity to the
+   * entries neither set (resolve_fidelity()); its banner text goes to
+   * @p fidelity_summary where given. Throws std::runtime_error with a
+   * one-line message naming the file, line or entry on any problem.
    */
   void
   read_parameters(ParameterHandler               &prm,
                   const std::string              &filename,
-                  const std::vector<std::string> &overrides);
+                  const std::vector<std::string> &overrides,
+                  std::string                    *fidelity_summary = nullptr);
 
   /**
    * Checks of single entries beyond their patterns (an empty output
