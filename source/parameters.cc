@@ -27,7 +27,7 @@ namespace densify
       scene.fidelity,
       "One knob for accuracy against run time: draft, standard or reference "
       "set the element size, load steps, Newton tolerance, contact penalty "
-      "and solver settings measured in doc/accuracy.md (the banner prints "
+      "and solver settings recommended by doc/accuracy.md (the banner prints "
       "what it set), but only those entries that the parameter file and "
       "--set leave unset: each stays overridable. as set: nothing changes. "
       "The sizes and step counts suit 2.5 mm particles and the paper's "
@@ -643,7 +643,10 @@ namespace densify
         "Sets the contact penalty of explicit runs: the squared frequency of "
         "the stiffest contact spring as this fraction of the elements' "
         "largest one (dimensionless, > 0); the stable step includes the "
-        "springs. Larger: less penetration, smaller time steps.",
+        "springs. Larger: less penetration (the penalty's force bias falls "
+        "as 1 / value) but, at a given Number of steps, more added mass and "
+        "so more inertia in the forces: raise it together with Number of "
+        "steps.",
         Patterns::Double(1e-6, 100.));
       prm.add_parameter(
         "Contact multiplier steps",

@@ -222,7 +222,7 @@ namespace densify
     double damping_ratio = 0.;
     /// Contact springs' squared frequency against the elements' largest one
     /// (sets the contact penalty; the stable step accounts for it).
-    double contact_stiffness = 0.25;
+    double contact_stiffness = 1.;
     /// The contact multipliers follow the pressures over about this many
     /// steps (0: pure penalty).
     unsigned int multiplier_steps = 0;
