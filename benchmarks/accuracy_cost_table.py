@@ -111,6 +111,15 @@ def shape(directory):
 def run_row(scene, label, directory, status, scene_file, sets, defaults):
     settings = dict(defaults)
     settings.update(read_prm(scene_file))
+    # the entries a Scene/Fidelity level set (those the file and --set left
+    # unset), as the run's banner lists them
+    log = open(directory + ".log", errors="replace").read()
+    m = re.search(r"^Fidelity: \S+ \((.*)\)$", log, re.M)
+    if m:
+        for entry in m.group(1).split(", "):
+            if " = " in entry:
+                name, value = entry.split(" = ", 1)
+                settings[name.strip()] = value.strip()
     for entry in filter(None, sets.split(";")):
         name, value = entry.split("=", 1)
         settings[name.strip()] = value.strip()
@@ -121,7 +130,6 @@ def run_row(scene, label, directory, status, scene_file, sets, defaults):
     rows = list(csv.DictReader(open(stats))) if os.path.isfile(stats) else []
     wall, user, system = (number(t) for t in open(directory + ".time").read().split()[-3:])
     row["wall_s"], row["core_s"] = wall, user + system
-    log = open(directory + ".log", errors="replace").read()
     m = re.search(r"(\d+) DoFs", log)
     row["dofs"] = int(m.group(1)) if m else ""
     row["newton_iterations"] = sum(int(r["newton_iterations"]) for r in rows)

@@ -136,10 +136,13 @@ namespace densify
                                false);
         stable = lumped_mass->update(solution_ghosted, required_step, mass);
         calibrated_bound = lumped_mass->bound_frequency2();
-        pcout << "Explicit dynamics: stable step measured anew at t = "
-              << load_time << ": calibration " << before << " -> "
-              << lumped_mass->calibration_factor() << ", added mass "
-              << 100. * lumped_mass->added_mass_fraction() << " %" << std::endl;
+        // in log.txt only: a line per measurement would crowd the progress
+        if (this_rank == 0)
+          log_file << "Explicit dynamics: stable step measured anew at t = "
+                   << load_time << ": calibration " << before << " -> "
+                   << lumped_mass->calibration_factor() << ", added mass "
+                   << 100. * lumped_mass->added_mass_fraction() << " %"
+                   << std::endl;
       }
     return stable;
   }
