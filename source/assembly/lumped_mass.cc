@@ -15,44 +15,8 @@ namespace densify
 {
   namespace
   {
-    /// Volume, sum of the squared shape gradients G = sum_a |g_a|^2 and
-    /// the largest eigenvalue of sum_a g_a g_a^T of a linear tetrahedron
-    /// with corners @p x.
-    std::array<double, 3>
-    tetrahedron_measures(const std::array<Point<3>, 4> &x)
-    {
-      Tensor<2, 3> J;
-      for (unsigned int d = 0; d < 3; ++d)
-        for (unsigned int e = 0; e < 3; ++e)
-          J[e][d] = x[d + 1][e] - x[0][e];
-      const double det = determinant(J);
-      if (!(det > 0.))
-        return {{det / 6.,
-                 std::numeric_limits<double>::infinity(),
-                 std::numeric_limits<double>::infinity()}};
-      // grad N_a = J^-T grad_ref N_a, grad_ref N_0 = -(1,1,1)
-      const Tensor<2, 3>    J_inv_T = transpose(invert(J));
-      SymmetricTensor<2, 3> GG;
-      Tensor<1, 3>          g0;
-      for (unsigned int a = 0; a < 4; ++a)
-        {
-          Tensor<1, 3> g;
-          if (a < 3)
-            {
-              Tensor<1, 3> e;
-              e[a] = 1.;
-              g    = J_inv_T * e;
-              g0 -= g;
-            }
-          else
-            g = g0;
-          GG += symmetrize(outer_product(g, g));
-        }
-      return {{det / 6., trace(GG), eigenvalues(GG)[0]}};
-    }
-
     /// Volume and shape gradients of a linear tetrahedron with corners
-    /// @p x (a volume <= 0 for an inverted one).
+    /// @p x (a volume <= 0 for an inverted one, the gradients then unset).
     double
     tetrahedron_gradients(const std::array<Point<3>, 4> &x,
                           std::array<Tensor<1, 3>, 4>   &g)
@@ -64,6 +28,7 @@ namespace densify
       const double det = determinant(J);
       if (!(det > 0.))
         return det / 6.;
+      // grad N_a = J^-T grad_ref N_a, grad_ref N_0 = -(1,1,1)
       const Tensor<2, 3> J_inv_T = transpose(invert(J));
       g[0]                       = Tensor<1, 3>();
       for (unsigned int a = 1; a < 4; ++a)
@@ -74,6 +39,24 @@ namespace densify
           g[0] -= g[a];
         }
       return det / 6.;
+    }
+
+    /// Volume, sum of the squared shape gradients G = sum_a |g_a|^2 and
+    /// the largest eigenvalue of sum_a g_a g_a^T of a linear tetrahedron
+    /// with corners @p x.
+    std::array<double, 3>
+    tetrahedron_measures(const std::array<Point<3>, 4> &x)
+    {
+      std::array<Tensor<1, 3>, 4> g;
+      const double                V = tetrahedron_gradients(x, g);
+      if (!(V > 0.))
+        return {{V,
+                 std::numeric_limits<double>::infinity(),
+                 std::numeric_limits<double>::infinity()}};
+      SymmetricTensor<2, 3> GG;
+      for (const unsigned int a : {1u, 2u, 3u, 0u})
+        GG += symmetrize(outer_product(g[a], g[a]));
+      return {{V, trace(GG), eigenvalues(GG)[0]}};
     }
   } // namespace
 
