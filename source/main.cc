@@ -2,6 +2,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <densify/effects.h>
 #include <densify/geometry/packing.h>
 #include <densify/parameters.h>
 #include <densify/scene.h>
@@ -199,6 +200,8 @@ main(int argc, char **argv)
       check_parameters(parameters);
       parameters.fingerprint      = parameter_fingerprint(prm);
       const Scene        scene    = build_scene(parameters);
+      // options that do not fit together are input errors too
+      resolve_effects(parameters, scene);
       const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
       check_mesh_size(parameters, estimate);
       std::ostringstream what;

@@ -2,7 +2,6 @@
 // load history.
 #include <deal.II/base/utilities.h>
 
-#include <densify/assembly/nodal_averaging.h>
 #include <densify/geometry/packing.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
@@ -242,71 +241,6 @@ namespace densify
     scene.lateral_table =
       parse_table(prm.tools.upper_lateral_displacement,
                   "Tools/Upper punch/Lateral displacement history");
-    const std::array<std::pair<std::string, std::string>, n_tool_kinds>
-      friction = {{{"Lower punch", prm.tools.lower_friction},
-                   {"Upper punch", prm.tools.upper_friction},
-                   {"Die wall", prm.tools.die_friction}}};
-    for (unsigned int t = 0; t < n_tool_kinds; ++t)
-      {
-        const std::string &text = friction[t].second;
-        double             mu   = prm.contact.friction_coefficient;
-        if (text != "default")
-          {
-            try
-              {
-                mu = Utilities::string_to_double(text);
-              }
-            catch (...)
-              {
-                mu = -1;
-              }
-            if (!(mu >= 0))
-              throw std::runtime_error(
-                "Tools/" + friction[t].first + "/Friction coefficient: '" +
-                text + "' is neither a number >= 0 nor 'default'");
-          }
-        scene.tool_friction[t] = mu;
-      }
-    if (prm.contact.hold_poles != "false")
-      {
-        bool rough = false;
-        for (const double mu : scene.tool_friction)
-          rough = rough || mu > 0;
-        if (rough)
-          throw std::runtime_error(
-            "Contact/Hold poles on axis is for frictionless scenes: set "
-            "Contact/Friction coefficient = 0 (and no tool Friction "
-            "coefficient above 0), or switch it off");
-        // true: one particle, or a stack on one vertical line
-        // (axisymmetric); vertical: any layout
-        for (const Particle &p : scene.particles)
-          if (prm.contact.hold_poles == "true")
-            if (std::hypot(p.centre[0] - scene.particles[0].centre[0],
-                           p.centre[1] - scene.particles[0].centre[1]) >
-                1e-9 * scene.particles[0].diameter)
-              throw std::runtime_error(
-                "Contact/Hold poles on axis = true is for one particle or a "
-                "stack of particles on one vertical line: use 'vertical' (the "
-                "particles may move sideways) or false in this scene");
-      }
-    if (prm.contact.contact_points == "vertices" && prm.mesh.degree != 1)
-      throw std::runtime_error(
-        "Contact/Contact points = vertices is for P1 elements (the edge "
-        "midpoints of P2 would not be held): set it to auto or Gauss points, "
-        "or Mesh/Polynomial degree = 1");
-    if (prm.contact.friction_tangent == "consistent" &&
-        prm.solver.linear_solver == "cg-amg")
-      throw std::runtime_error(
-        "Contact/Friction tangent = consistent gives a nonsymmetric tangent "
-        "that CG cannot solve: set Solver/Linear solver = gmres-amg (or "
-        "direct)");
-
-    if (prm.contact.geometric_tangent == "true" &&
-        prm.solver.linear_solver == "cg-amg")
-      throw std::runtime_error(
-        "Contact/Geometric tangent = true gives a nonsymmetric tangent that "
-        "CG cannot solve: set Solver/Linear solver = gmres-amg, gmres-lu or "
-        "direct, or Contact/Geometric tangent = auto");
 
     Container container;
     container.has_die    = prm.tools.die_enabled;
@@ -321,9 +255,6 @@ namespace densify
         "Tools/Upper punch/Initial position must be above Tools/Lower "
         "punch/Position");
     check_particles(particles, container, 1e-9 * top);
-
-    // a locking remedy the mesh cannot take is an input error too
-    use_nodal_averaging(prm);
 
     // unknown material names are input errors too
     for (const Particle &p : particles)

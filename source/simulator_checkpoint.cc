@@ -142,21 +142,28 @@ namespace densify
             boost::archive::binary_oarchive archive(out);
             std::vector<double>             solution_values =
               owned_values(solution, locally_owned);
+            // the load stepper's predictor and increment (implicit method)
             std::vector<double> increment_values =
-              owned_values(last_increment, locally_owned);
+              stepper ? owned_values(stepper->last_increment, locally_owned) :
+                        std::vector<double>(locally_owned.n_elements(), 0.);
+            double next_increment = stepper ? stepper->next_increment : 0.;
+            double last_punch_increment = stepper ? stepper->last_travel : 0.;
             // the history of this rank's cells
             std::vector<MaterialState> history;
-            if (has_history)
+            if (continuum->has_history())
               {
-                const unsigned int n_q = history_per_cell;
+                const unsigned int n_q = continuum->states_per_cell();
                 for (const auto &cell : triangulation.active_cell_iterators())
                   if (cell->is_locally_owned())
                     for (unsigned int q = 0; q < n_q; ++q)
                       history.push_back(
-                        committed_history[cell->active_cell_index() * n_q + q]);
+                        continuum
+                          ->committed()[cell->active_cell_index() * n_q + q]);
               }
-            ToolContact::State     tools     = tool_contact.state();
-            ParticleContact::State contacts  = particle_contact.state();
+            ContactState tools =
+              tool_contact ? tool_contact->state() : ContactState();
+            ContactState contacts =
+              particle_contact ? particle_contact->state() : ContactState();
             unsigned int           last_step = step;
             double                 wall      = wall_seconds;
             archive &header &last_step &current_time &current_upper
@@ -274,8 +281,9 @@ namespace densify
     double                     wall = 0.;
     std::vector<double>        solution_values, increment_values;
     std::vector<MaterialState> history;
-    ToolContact::State         tools;
-    ParticleContact::State     contacts;
+    ContactState               tools;
+    ContactState               contacts;
+    double                     next_increment = 0., last_punch_increment = 0.;
     ExplicitDynamics::State    dynamics;
     std::vector<double>        factors;
     double                     calibration = 1.;
@@ -335,32 +343,40 @@ namespace densify
       }
 
     set_owned_values(solution_values, locally_owned, solution);
-    set_owned_values(increment_values, locally_owned, last_increment);
-    if (has_history)
+    if (stepper)
       {
-        const unsigned int n_q = history_per_cell;
-        unsigned int       k   = 0;
+        set_owned_values(increment_values,
+                         locally_owned,
+                         stepper->last_increment);
+        stepper->next_increment = next_increment;
+        stepper->last_travel    = last_punch_increment;
+      }
+    if (continuum->has_history())
+      {
+        const unsigned int         n_q = continuum->states_per_cell();
+        std::vector<MaterialState> states(continuum->committed());
+        unsigned int               k = 0;
         for (const auto &cell : triangulation.active_cell_iterators())
           if (cell->is_locally_owned())
             for (unsigned int q = 0; q < n_q; ++q)
               {
                 AssertIndexRange(k, history.size());
-                committed_history[cell->active_cell_index() * n_q + q] =
-                  history[k++];
+                states[cell->active_cell_index() * n_q + q] = history[k++];
               }
-        trial_history = committed_history;
+        continuum->set_committed(states);
       }
-    tool_contact.set_state(tools);
-    if (has_particle_contact)
-      particle_contact.set_state(contacts);
+    if (tool_contact)
+      tool_contact->set_state(tools);
+    if (particle_contact)
+      particle_contact->set_state(contacts);
     wall_before       = wall;
     committed_ghosted = solution;
     update_ghosts();
-    if (has_particle_contact)
+    if (particle_contact)
       {
         // the search of the loaded configuration, and its matrix pattern
-        particle_contact.update_search(solution_ghosted, search_margin);
-        if (method == Method::implicit)
+        particle_contact->update_search(solution_ghosted, search_margin);
+        if (effects.method == Method::implicit)
           setup_matrix();
       }
     if (explicit_dynamics)

@@ -16,22 +16,17 @@ namespace densify
   std::vector<double>
   Simulator::setup_explicit(const double tangential_ratio)
   {
-    const std::string &scaling = prm.explicit_dynamics.mass_scaling;
-    lumped_mass =
-      std::make_unique<LumpedMass>(dof_handler,
-                                   particle_material,
-                                   scaling == "none" ? MassScaling::none :
-                                   scaling == "uniform" ?
-                                                       MassScaling::uniform :
-                                                       MassScaling::selective,
-                                   tangential_ratio);
+    lumped_mass = std::make_unique<LumpedMass>(dof_handler,
+                                               particle_material,
+                                               effects.mass_scaling,
+                                               tangential_ratio);
     explicit_dynamics =
       std::make_unique<ExplicitDynamics>(prm.explicit_dynamics,
                                          prm.time.end_time,
                                          comm);
     // the mass (scaled for the target step), then the contact penalty that
     // fits the elements' stable step
-    const bool   scaled   = (scaling != "none");
+    const bool   scaled   = (effects.mass_scaling != MassScaling::none);
     const double required = scaled ? prm.explicit_dynamics.loading_time /
                                        prm.explicit_dynamics.n_steps /
                                        prm.explicit_dynamics.safety :
@@ -150,24 +145,6 @@ namespace densify
 
 
   void
-  Simulator::set_loads(const double time, const double increment)
-  {
-    const double upper = upper_punch_position(time);
-    load_time          = time;
-    tool_contact.set_tool_position(ToolKind::upper_punch, upper);
-    tool_contact.set_tool_translation(
-      ToolKind::upper_punch,
-      Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
-    // the arctangent law's slip scale: the threshold velocity times the
-    // increment's duration
-    const double regularisation = prm.contact.slip_velocity * increment;
-    tool_contact.set_friction_regularisation(regularisation);
-    particle_contact.set_friction_regularisation(regularisation);
-  }
-
-
-
-  void
   Simulator::forces(const TrilinosWrappers::MPI::Vector &u,
                     const double                         scene_time,
                     const double                         scene_increment,
@@ -179,7 +156,7 @@ namespace densify
     if (&u != &solution)
       solution = u;
     update_ghosts();
-    if (has_particle_contact)
+    if (particle_contact)
       {
         // a new search once two points may have closed by more than its
         // margin since the last one (each moved at most max |u - u_search|)
@@ -192,28 +169,28 @@ namespace densify
             search_margin)
           {
             TimerOutput::Scope ts(timer, "Contact: search");
-            particle_contact.update_search(solution_ghosted, search_margin);
+            particle_contact->update_search(solution_ghosted, search_margin);
             search_solution = solution;
           }
       }
+    const AssemblyContext c = context();
     {
       TimerOutput::Scope ti(timer, "Explicit: internal forces");
       internal = 0.;
-      assemble_internal(internal, false);
+      continuum->assemble(c, internal, nullptr);
       // every explicit step is accepted
-      if (has_history)
-        committed_history.swap(trial_history);
+      continuum->commit(c);
     }
 
     TimerOutput::Scope tc(timer, "Explicit: contact and loads");
     external         = 0.;
     double body_work = 0.;
-    if (body_force.norm() > 0)
+    if (body_force)
       {
         // trapezoidal work of the body force over the step
         const TrilinosWrappers::MPI::Vector old_forces = body_forces;
         body_forces                                    = 0.;
-        add_body_force(body_forces);
+        body_force->assemble(c, body_forces, nullptr);
         for (unsigned int i = 0; i < solution.locally_owned_size(); ++i)
           {
             const double du = solution.begin()[i] - body_solution.begin()[i];
@@ -223,19 +200,12 @@ namespace densify
         external += body_forces;
         body_solution = solution;
       }
-    const unsigned int n_relax    = prm.explicit_dynamics.multiplier_steps;
-    const double       relaxation = n_relax > 0 ? 1. / n_relax : 0.;
-    ContactResults     contact;
-    contact.tools = tool_contact.assemble_and_commit(*mapping,
-                                                     solution_ghosted,
-                                                     external,
-                                                     relaxation);
-    if (has_particle_contact)
-      contact.particles = particle_contact.assemble_and_commit(*mapping,
-                                                               solution_ghosted,
-                                                               external,
-                                                               relaxation);
+    // the contact terms accept each evaluation (with the integral action of
+    // Explicit/Contact multiplier steps)
+    for (ForceTerm *term : other_terms)
+      term->assemble(c, external, nullptr);
     external.compress(VectorOperation::add);
+    const ContactResults contact = contact_results();
 
     // the account of the loads: work of the moving upper punch (its normal
     // force along its travel, its friction along its lateral motion)
@@ -347,34 +317,4 @@ namespace densify
 
 
 
-  double
-  Simulator::plastic_work() const
-  {
-    if (!has_history)
-      return 0.;
-    // the integration weights of the history slots: V/4 at the corners of
-    // the nodal-averaged F-bar, else the quadrature weights
-    const QGaussSimplex<3> quadrature(prm.mesh.degree + 1);
-    FEValues<3> fe_values(*mapping, *fe, quadrature, update_JxW_values);
-    double      work = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Material   &m = *particle_material[cell->material_id()];
-          const std::size_t k0 =
-            std::size_t(cell->active_cell_index()) * history_per_cell;
-          if (nodal_averaging)
-            for (unsigned int q = 0; q < 4; ++q)
-              work += cell->measure() / 4. *
-                      m.plastic_work(committed_history[k0 + q]);
-          else
-            {
-              fe_values.reinit(cell);
-              for (unsigned int q = 0; q < quadrature.size(); ++q)
-                work +=
-                  fe_values.JxW(q) * m.plastic_work(committed_history[k0 + q]);
-            }
-        }
-    return Utilities::MPI::sum(work, comm);
-  }
 } // namespace densify

@@ -26,8 +26,6 @@ namespace densify
     /// Body force on every particle (N/mm^3) and its factor against time.
     Tensor<1, 3>                           body_force;
     std::vector<std::pair<double, double>> body_force_table;
-    /// Friction coefficient of each tool, by ToolKind.
-    std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
   };
 
   /**

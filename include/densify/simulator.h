@@ -16,10 +16,16 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <densify/assembly/body_force.h>
+#include <densify/assembly/continuum.h>
 #include <densify/assembly/lumped_mass.h>
+#include <densify/assembly/pole_springs.h>
+#include <densify/assembly/stabilisation.h>
 #include <densify/contact/particle_contact.h>
 #include <densify/contact/tool_contact.h>
 #include <densify/drivers/explicit_dynamics.h>
+#include <densify/drivers/load_stepper.h>
+#include <densify/effects.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
@@ -35,8 +41,6 @@
 
 namespace densify
 {
-  class NodalAveraging;
-
   /**
    * How a run may stop early and continue: the command line's --resume and
    * --stop-after, and a signal handler's flag.
@@ -53,16 +57,18 @@ namespace densify
   };
 
   /**
-   * Runs one scene: builds the multi-body mesh of all particles, then for each
-   * load step moves the upper punch and solves the quasi-static equilibrium
-   * by Newton's method with line search inside an augmented-Lagrangian loop
-   * for the tool contact. Writes statistics.csv, log.txt and graphics into
-   * the output directory. Every MPI rank holds the whole mesh
-   * (parallel::shared::Triangulation, METIS partition) and assembles its own
-   * cells. With Solver/Method = explicit the same system is integrated by
-   * ExplicitDynamics between the load steps (source/simulator_explicit.cc).
+   * Runs one scene: builds the multi-body mesh of all particles, resolves
+   * the scene's effects (Effects) and builds a force term for each effect
+   * that is on (the continuum, body force, stabilisation, pole springs, tool
+   * and particle contact: ForceTerm). For each load step it moves the upper
+   * punch and either advances the quasi-static equilibrium with the
+   * LoadStepper (Newton per increment, NewtonSolver) or integrates the same
+   * force terms with ExplicitDynamics (source/simulator_explicit.cc). Writes
+   * statistics.csv, log.txt and graphics into the output directory. Every
+   * MPI rank holds the whole mesh (parallel::shared::Triangulation, METIS
+   * partition) and assembles its own cells.
    */
-  class Simulator : private ExplicitSystem
+  class Simulator : private ExplicitSystem, private IncrementalProblem
   {
   public:
     /// Prepare a run: create the output directory and its log.txt (nothing
@@ -105,7 +111,7 @@ namespace densify
     const std::vector<double> &
     newton_residuals() const
     {
-      return residual_history;
+      return newton->residuals();
     }
 
     /// The DoF handler of the displacement.
@@ -151,15 +157,17 @@ namespace densify
     std::vector<double>
     particle_tool_forces(const ToolKind kind) const
     {
-      return tool_contact.particle_forces(*mapping, solution_ghosted, kind);
+      return tool_contact ?
+               tool_contact->particle_forces(*mapping, solution_ghosted, kind) :
+               std::vector<double>(particles.size(), 0.);
     }
 
     /// Number of particles each particle touches now.
     std::vector<unsigned int>
     contact_partners() const
     {
-      return has_particle_contact ?
-               particle_contact.contact_partners(*mapping, solution_ghosted) :
+      return particle_contact ?
+               particle_contact->contact_partners(*mapping, solution_ghosted) :
                std::vector<unsigned int>(particles.size(), 0);
     }
 
@@ -184,6 +192,21 @@ namespace densify
     std::vector<ParticleMeasure>
     measure_particles() const;
 
+    void
+    setup_particles();
+    void
+    setup_mesh();
+    void
+    setup_system();
+    /// Build the force terms the effects call for, in the order they add
+    /// to the residual.
+    void
+    setup_force_terms(const std::vector<double> &penalty);
+    /// (Re)build the sparsity pattern (cells plus the couplings of the force
+    /// terms), the tangent and the stabilisation matrix.
+    void
+    setup_matrix();
+
     /// Contact forces of the tools and between particles.
     struct ContactResults
     {
@@ -191,71 +214,64 @@ namespace densify
       ParticleContactResult particles;
     };
 
-    /// Result of assemble().
-    struct AssemblyResult
+    /// The contact results of the last assembly.
+    ContactResults
+    contact_results() const;
+    /// The contact results of the last evaluate_constraints().
+    ContactResults last_contact;
+
+    /// The context of an assembly at solution_ghosted.
+    AssemblyContext
+    context(const double tangent_margin = 0.) const;
+
+    /**
+     * Add every force term at solution_ghosted to @p forces (and the
+     * tangent if @p with_matrix), compressed; returns the reference norm of
+     * the relative Newton criterion: the larger of the bulk forces' norm and
+     * the total contact force (N).
+     */
+    double
+    assemble_terms(TrilinosWrappers::MPI::Vector &forces,
+                   const bool                     with_matrix,
+                   const double                   tangent_margin);
+
+    // IncrementalProblem (the implicit method)
+    Evaluation
+    assemble(const bool   with_tangent,
+             const double tangent_margin,
+             const bool   search) override;
+    TrilinosWrappers::MPI::Vector &
+    solution_vector() override
     {
-      ToolContactResult     contact;
-      ParticleContactResult particle_contact;
-      /// l2 norm of the out-of-balance force (N).
-      double residual_norm = 0.;
-      /// Scale for the relative Newton criterion (N).
-      double reference_norm = 0.;
-    };
-
+      return solution;
+    }
+    TrilinosWrappers::MPI::Vector &
+    residual_vector() override
+    {
+      return residual;
+    }
+    unsigned int
+    solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
+                 TrilinosWrappers::MPI::Vector       &du,
+                 const double relative_tolerance) override;
     void
-    setup_particles();
+    begin_solve() override;
+    unsigned int
+    after_update() override;
+    std::string
+    iteration_details() override;
+    double
+    set_loads(const double time, const double increment) override;
+    double
+    evaluate_constraints() override;
     void
-    setup_mesh();
+    update_multipliers() override;
     void
-    setup_system();
+    save_state() override;
     void
-    setup_stabilisation();
-    /// (Re)build the sparsity pattern (cells plus the particle contact
-    /// couplings), the tangent and the stabilisation matrix.
+    restore_state() override;
     void
-    setup_matrix();
-
-    /// Internal forces at solution_ghosted added into @p forces (and their
-    /// tangent into the tangent matrix if @p with_matrix), compressed.
-    /// Throws std::runtime_error on a material failure (on every rank).
-    void
-    assemble_internal(TrilinosWrappers::MPI::Vector &forces,
-                      const bool                     with_matrix);
-
-    /// Residual (and tangent if @p with_matrix) at the current solution;
-    /// @p tangent_margin as in ToolContact::assemble(). The particle contact
-    /// search is refreshed first if @p with_matrix or @p search (only a
-    /// tangent needs a new matrix pattern for new couplings).
-    AssemblyResult
-    assemble(const bool   with_matrix,
-             const double tangent_margin = 0.,
-             const bool   search         = false);
-
-    /// Newton with line search for fixed multipliers; the first tangent uses
-    /// the contact predictor @p margin (mm). Returns the number of Newton and
-    /// linear iterations; throws on failure.
-    std::pair<unsigned int, unsigned int>
-    solve_newton(const unsigned int step, const double margin);
-
-    /**
-     * Solve one increment to @p time: predictor, then Newton inside the
-     * multiplier updates. Throws std::runtime_error on failure (the caller
-     * restores the state).
-     */
-    ContactResults
-    solve_increment(const double       time,
-                    const unsigned int step,
-                    StepStatistics    &s);
-
-    /**
-     * Advance from the current time to @p time (the end of load step
-     * @p step) in one or more increments: a failed increment is rolled back
-     * and retried with half the size (at most Time stepping/Maximum
-     * cut-backs times in a row), and increments grow again after easy ones.
-     * Commits the quadrature-point history of each accepted increment.
-     */
-    ContactResults
-    advance_to(const double time, const unsigned int step, StepStatistics &s);
+    commit() override;
 
     /// Position of the upper punch face at time @p t (mm).
     double
@@ -292,36 +308,8 @@ namespace densify
     void
     update_ghosts();
 
-    /// Find the horizontal DoFs of the pole vertices of every particle
-    /// (Contact/Hold poles on axis); called by setup_matrix().
-    void
-    setup_pole_springs();
-
-    /// Add the matrix entries of the springs between two poles.
-    void
-    add_pole_couplings(TrilinosWrappers::SparsityPattern &pattern);
-
-    /// Add the pole springs to the residual (and to the tangent if
-    /// @p with_matrix); returns the l2 norm of their forces (N), on every
-    /// rank. Does nothing without Contact/Hold poles on axis.
-    double
-    add_pole_springs(const bool with_matrix);
-
-    /// A pole spring: stiffness k (N/mm) on the horizontal DoF i, towards
-    /// zero (Hold poles on axis = true) or towards DoF j (vertical, and the
-    /// spin spring of a stack).
-    struct PoleSpring
-    {
-      types::global_dof_index i = 0;
-      types::global_dof_index j = numbers::invalid_dof_index;
-      double                  k = 0.;
-    };
-    /// The pole springs this rank adds (each spring on one rank).
-    std::vector<PoleSpring> pole_springs;
     /// How often the tangent's sparsity pattern was made.
     unsigned int n_matrix_setups = 0;
-    /// Force of the pole springs at the last converged state (N).
-    double last_pole_force = 0.;
 
     const Parameters &prm;
     /// How the run may stop early and continue.
@@ -350,59 +338,43 @@ namespace densify
     /// touch (masters may lie anywhere), else the locally relevant ones.
     IndexSet ghosted_dofs;
 
-    TrilinosWrappers::SparseMatrix tangent, stabilisation;
-    TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual,
-      increment;
+    TrilinosWrappers::SparseMatrix tangent;
+    TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual;
     /// The solution of the last accepted increment, with ghost entries
     /// (friction measures slip from it).
     TrilinosWrappers::MPI::Vector committed_ghosted;
 
-    /// Quadrature-point history (index: active cell index * n_q + q),
-    /// allocated only if some material needs it.
-    bool                       has_history = false;
-    std::vector<MaterialState> committed_history, trial_history;
-    /// Material states per cell in the histories: one per quadrature point,
-    /// or one per corner with the nodal-averaged F-bar.
-    unsigned int history_per_cell = 0;
     /// Time and upper punch position of the last accepted increment.
     double current_time = 0., current_upper = 0.;
-    /// Size of the next increment (s).
-    double next_increment = 0.;
+    /// The time of the load being solved for (s).
+    double load_time = 0.;
 
-    /// Converged displacement increment of the last step and the punch
-    /// travel that caused it (for the extrapolating predictor).
-    TrilinosWrappers::MPI::Vector last_increment;
-    double                        last_punch_increment = 0.;
-
-    /// F-bar with nodal averaging (P1 locking remedy); nullptr when off.
-    std::unique_ptr<NodalAveraging> nodal_averaging;
-
-    ToolContact tool_contact;
-    /// Particle-particle contact, if there is more than one particle.
-    bool has_particle_contact = false;
-    /// Solver/Linear solver with 'auto' resolved (cg-amg, gmres-amg, direct).
-    std::string linear_solver_type;
-    /// Contact/Geometric tangent resolved: the particle contact tangent with
-    /// the motion of the master facets.
-    bool            geometric_tangent = false;
-    ParticleContact particle_contact;
+    /// The effects of the scene, resolved once.
+    Effects effects;
+    /// The force terms, each built only if its effect is on (else null).
+    std::unique_ptr<Continuum>       continuum;
+    std::unique_ptr<BodyForce>       body_force;
+    std::unique_ptr<ToolContact>     tool_contact;
+    std::unique_ptr<ParticleContact> particle_contact;
+    std::unique_ptr<PoleSprings>     pole_springs;
+    std::unique_ptr<Stabilisation>   stabilisation;
+    /// The force terms that are on, in the order they add to the residual:
+    /// the bulk (continuum, body force), then the others.
+    std::vector<ForceTerm *> bulk_terms, other_terms;
     /// Search margin of the particle contact (mm).
     double search_margin = 0.;
-    /// Body force (N/mm^3), its factor against time, and the time of the
-    /// load being solved for.
-    Tensor<1, 3>                           body_force;
+    /// The scene's body force and its factor against time, and the
+    /// sideways upper punch displacement against time.
+    Tensor<1, 3>                           scene_body_force;
     std::vector<std::pair<double, double>> body_force_table;
-    double                                 load_time = 0.;
-    /// Add -int b . phi to @p forces (only called if b != 0).
-    void
-    add_body_force(TrilinosWrappers::MPI::Vector &forces);
+    std::vector<std::pair<double, double>> lateral_table;
 
-    /// How the load steps are solved (Solver/Method, resolved once).
-    enum class Method
-    {
-      implicit,
-      explicit_dynamics
-    } method;
+    /// The implicit method: Newton's method, the load stepper, the linear
+    /// solver; null with explicit dynamics.
+    std::unique_ptr<NewtonSolver>  newton;
+    std::unique_ptr<LoadStepper>   stepper;
+    std::unique_ptr<LinearSolver>  linear_solver;
+    double                         last_stabilisation_force = 0.;
 
     /**
      * Explicit dynamics: the lumped mass, the integrator and the contact
@@ -440,15 +412,6 @@ namespace densify
     {
       return explicit_work.tools + explicit_work.body;
     }
-
-    /// Set the tools and the body force for scene time @p time and the
-    /// friction regularisation for the increment @p increment.
-    void
-    set_loads(const double time, const double increment);
-
-    /// Plastic work of the committed history (mJ), on every rank.
-    double
-    plastic_work() const;
 
     std::unique_ptr<LumpedMass> lumped_mass;
     /// Margin of the measured largest frequency over the power iteration's
@@ -496,16 +459,7 @@ namespace densify
     TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;
     /// The explicit run's last station account.
     ExplicitDynamics::Account explicit_account;
-    /// Sideways upper punch displacement against time.
-    std::vector<std::pair<double, double>> lateral_table;
-    /// Friction coefficient of each tool, by ToolKind.
-    std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
-    std::unique_ptr<LinearSolver>    linear_solver;
-    double                           last_stabilisation_force = 0.;
-
     std::vector<StepStatistics> step_statistics;
-    /// See newton_residuals().
-    std::vector<double>               residual_history;
     std::unique_ptr<StatisticsWriter> statistics_writer;
     /// particles.csv: per particle and step, volume and mean displacement.
     std::ofstream particle_file;

@@ -99,26 +99,6 @@ namespace densify
 
 
 
-  bool
-  use_nodal_averaging(const Parameters &prm)
-  {
-    const std::string &remedy = prm.mesh.locking_remedy;
-    if (remedy == "nodal averaging")
-      {
-        if (prm.mesh.degree != 1)
-          throw std::runtime_error(
-            "Mesh/Volumetric locking remedy = nodal averaging needs "
-            "Mesh/Polynomial degree = 1 (quadratic tetrahedra do not lock: "
-            "use none or auto)");
-        return true;
-      }
-    if (remedy == "auto")
-      return prm.mesh.degree == 1 && prm.material.model == "J2 plasticity";
-    return false;
-  }
-
-
-
   NodalAveraging::NodalAveraging(const DoFHandler<3> &dof_handler,
                                  const Mapping<3>    &mapping)
   {

@@ -855,16 +855,12 @@ namespace densify
 
 
   ParticleContactResult
-  ParticleContact::assemble(const Mapping<3>                    &mapping,
-                            const TrilinosWrappers::MPI::Vector &solution,
-                            TrilinosWrappers::MPI::Vector       &residual,
-                            TrilinosWrappers::SparseMatrix      *matrix,
-                            const double tangent_margin) const
+  ParticleContact::pass(const Mapping<3>                    &mapping,
+                        const TrilinosWrappers::MPI::Vector &solution,
+                        const ContactOutputs                &common) const
   {
     Outputs out;
-    out.residual       = &residual;
-    out.matrix         = matrix;
-    out.tangent_margin = tangent_margin;
+    static_cast<ContactOutputs &>(out) = common;
     return loop(mapping, solution, out);
   }
 
@@ -884,84 +880,6 @@ namespace densify
     loop(mapping, solution, out);
     assigned.swap(new_assignment);
     return Utilities::MPI::sum(n_changed, dof_handler->get_communicator());
-  }
-
-
-
-  ParticleContactResult
-  ParticleContact::evaluate(const Mapping<3>                    &mapping,
-                            const TrilinosWrappers::MPI::Vector &solution) const
-  {
-    return loop(mapping, solution, Outputs());
-  }
-
-
-
-  void
-  ParticleContact::update_multipliers(
-    const Mapping<3>                    &mapping,
-    const TrilinosWrappers::MPI::Vector &solution)
-  {
-    std::vector<double> new_lambda(lambda.size());
-    Outputs             out;
-    out.new_lambda = &new_lambda;
-    loop(mapping, solution, out);
-    lambda.swap(new_lambda);
-  }
-
-
-
-  void
-  ParticleContact::commit(const Mapping<3>                    &mapping,
-                          const TrilinosWrappers::MPI::Vector &solution)
-  {
-    if (friction.mu <= 0.)
-      return;
-    std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
-    std::vector<double>       new_slip = accumulated_slip;
-    Outputs                   out;
-    out.new_traction = &new_traction;
-    out.new_slip     = &new_slip;
-    loop(mapping, solution, out);
-    committed_traction.swap(new_traction);
-    accumulated_slip.swap(new_slip);
-  }
-
-
-
-  ParticleContactResult
-  ParticleContact::assemble_and_commit(
-    const Mapping<3>                    &mapping,
-    const TrilinosWrappers::MPI::Vector &solution,
-    TrilinosWrappers::MPI::Vector       &residual,
-    const double                         relaxation)
-  {
-    Outputs out;
-    out.residual = &residual;
-    std::vector<double> pressure(lambda.size());
-    if (relaxation > 0.)
-      out.new_lambda = &pressure;
-    std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
-    std::vector<double>       new_slip    = accumulated_slip;
-    const bool                friction_on = friction.mu > 0.;
-    if (friction_on)
-      {
-        out.new_traction = &new_traction;
-        out.new_slip     = &new_slip;
-      }
-    ParticleContactResult result = loop(mapping, solution, out);
-    result.multiplier_work *= relaxation;
-    // the multipliers relax towards the pressures (an integral action on
-    // the penetration)
-    if (relaxation > 0.)
-      for (unsigned int k = 0; k < lambda.size(); ++k)
-        lambda[k] += relaxation * (pressure[k] - lambda[k]);
-    if (friction_on)
-      {
-        committed_traction.swap(new_traction);
-        accumulated_slip.swap(new_slip);
-      }
-    return result;
   }
 
 

@@ -339,7 +339,7 @@ namespace densify
 
 
 
-  LinearSolver::LinearSolver(const std::string &type,
+  LinearSolver::LinearSolver(const LinearSolverType type,
                              const double       tolerance,
                              const unsigned int max_iterations,
                              const bool         reuse_amg,
@@ -411,7 +411,7 @@ namespace densify
       std::max((relative_tolerance > 0 ? relative_tolerance : tolerance) *
                  b.l2_norm(),
                1e-300));
-    if (type == "direct")
+    if (type == LinearSolverType::direct)
       {
         TimerOutput::Scope t(timer, "Solve: direct");
         factorize(matrix);
@@ -419,7 +419,7 @@ namespace densify
         return 1;
       }
 
-    if (type == "gmres-lu")
+    if (type == LinearSolverType::gmres_lu)
       return solve_with_factorization(matrix, x, b, control);
 
     const bool stale =
@@ -520,7 +520,7 @@ namespace densify
                        TrilinosWrappers::MPI::Vector        &x,
                        const TrilinosWrappers::MPI::Vector  &b)
   {
-    if (type == "gmres-amg")
+    if (type == LinearSolverType::gmres_amg)
       {
         TrilinosWrappers::SolverGMRES gmres(
           control, TrilinosWrappers::SolverGMRES::AdditionalData(false, 100));

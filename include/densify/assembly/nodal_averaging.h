@@ -24,15 +24,6 @@
 namespace densify
 {
   /**
-   * Whether the scene uses nodal averaging, from Mesh/Volumetric locking
-   * remedy: "nodal averaging" (P1 only), "none", or "auto" (on for P1 with
-   * J2 plasticity). Throws std::runtime_error with a one-line message for
-   * "nodal averaging" with Polynomial degree = 2.
-   */
-  bool
-  use_nodal_averaging(const Parameters &prm);
-
-  /**
    * Internal forces and tangent of linear tetrahedra with the volume ratio
    * averaged over vertex patches (Bonet & Burton 1998, "averaged nodal
    * volume" tetrahedron, written as an F-bar method).

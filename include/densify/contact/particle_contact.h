@@ -77,7 +77,7 @@ namespace densify
    * The solution vectors must hold every DoF (fully ghosted): masters may
    * lie anywhere.
    */
-  class ParticleContact
+  class ParticleContact : public ContactBase<ParticleContactResult>
   {
   public:
     /**
@@ -91,13 +91,6 @@ namespace densify
           const std::vector<double> &penalty_per_particle,
           const FrictionLaw         &friction,
           const Quadrature<2>       &contact_quadrature);
-
-    /// The displacement of the last accepted increment (all DoFs).
-    void
-    set_committed_solution(const TrilinosWrappers::MPI::Vector &committed)
-    {
-      committed_solution = &committed;
-    }
 
     /// Set the regularisation slip of the arctangent law (mm).
     void
@@ -143,16 +136,7 @@ namespace densify
     /// pattern_margin_factor times the search margin at the last
     /// update_search() (and of every earlier call) to @p pattern.
     void
-    add_couplings(TrilinosWrappers::SparsityPattern &pattern);
-
-    /// As ToolContact::assemble(): residual -(p n + t) . (phi_s - phi_m)
-    /// and its tangent.
-    ParticleContactResult
-    assemble(const Mapping<3>                    &mapping,
-             const TrilinosWrappers::MPI::Vector &solution,
-             TrilinosWrappers::MPI::Vector       &residual,
-             TrilinosWrappers::SparseMatrix      *matrix,
-             const double                         tangent_margin = 0.) const;
+    add_couplings(TrilinosWrappers::SparsityPattern &pattern) override;
 
     /**
      * Forget the master facets assigned to the slave points: the next
@@ -183,28 +167,6 @@ namespace densify
     update_projections(const Mapping<3>                    &mapping,
                        const TrilinosWrappers::MPI::Vector &solution);
 
-    /// Forces and penetration only.
-    ParticleContactResult
-    evaluate(const Mapping<3>                    &mapping,
-             const TrilinosWrappers::MPI::Vector &solution) const;
-
-    /// As ToolContact::assemble_and_commit().
-    ParticleContactResult
-    assemble_and_commit(const Mapping<3>                    &mapping,
-                        const TrilinosWrappers::MPI::Vector &solution,
-                        TrilinosWrappers::MPI::Vector       &residual,
-                        const double                         relaxation = 0.);
-
-    /// lambda <- max(0, lambda - eps g).
-    void
-    update_multipliers(const Mapping<3>                    &mapping,
-                       const TrilinosWrappers::MPI::Vector &solution);
-
-    /// Accept @p solution as the start of the next increment (friction).
-    void
-    commit(const Mapping<3>                    &mapping,
-           const TrilinosWrappers::MPI::Vector &solution);
-
     /// Number of distinct contact partners of each particle at @p solution
     /// (on every rank).
     std::vector<unsigned int>
@@ -218,23 +180,25 @@ namespace densify
                    const DoFHandler<3>                 &post_dof_handler,
                    SurfaceFieldSums                    &sums) const;
 
-    /// Multipliers and friction history, for roll-back and checkpoints.
-    using State = ToolContact::State;
-
-    /// The state.
-    State
-    state() const
+    std::string
+    name() const override
     {
-      return {lambda, committed_traction, accumulated_slip, {}};
+      return "particle contact";
     }
 
-    /// Restore a state saved by state() (same setup).
-    void
-    set_state(const State &saved)
+    /// Multipliers and friction history, for roll-back and checkpoints.
+    using State = ContactState;
+
+  protected:
+    ParticleContactResult
+    pass(const Mapping<3>                    &mapping,
+         const TrilinosWrappers::MPI::Vector &solution,
+         const ContactOutputs                &out) const override;
+
+    bool
+    friction_on() const override
     {
-      lambda             = saved.lambda;
-      committed_traction = saved.traction;
-      accumulated_slip   = saved.slip;
+      return friction.mu > 0.;
     }
 
   private:
@@ -261,14 +225,8 @@ namespace densify
     };
 
     /// What one pass writes besides the result.
-    struct Outputs
+    struct Outputs : ContactOutputs
     {
-      TrilinosWrappers::MPI::Vector           *residual       = nullptr;
-      TrilinosWrappers::SparseMatrix          *matrix         = nullptr;
-      double                                   tangent_margin = 0.;
-      std::vector<double>                     *new_lambda     = nullptr;
-      std::vector<Tensor<1, 3>>               *new_traction   = nullptr;
-      std::vector<double>                     *new_slip       = nullptr;
       std::set<std::pair<unsigned, unsigned>> *pairs          = nullptr;
       const DoFHandler<3>                     *post           = nullptr;
       SurfaceFieldSums                        *sums           = nullptr;
@@ -301,7 +259,6 @@ namespace densify
     static constexpr double projection_band = 0.1;
 
     const DoFHandler<3>                 *dof_handler        = nullptr;
-    const TrilinosWrappers::MPI::Vector *committed_solution = nullptr;
     std::vector<double>                  penalty;
     FrictionLaw                          friction;
     Quadrature<2>                        face_quadrature;
@@ -329,9 +286,6 @@ namespace densify
     std::vector<FacetTree> trees;
 
     /// Per slave quadrature point (slave face * n_q + q).
-    std::vector<double>       lambda;
-    std::vector<Tensor<1, 3>> committed_traction;
-    std::vector<double>       accumulated_slip;
     /// The master facet assigned to each slave point
     /// (numbers::invalid_unsigned_int: the closest candidate).
     std::vector<unsigned int> assigned;

@@ -12,6 +12,7 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <densify/contact/contact_base.h>
 #include <densify/contact/contact_law.h>
 #include <densify/contact/rigid_tools.h>
 
@@ -84,7 +85,7 @@ namespace densify
    * enabled tools are stored and searched; a tool with mu = 0 runs no friction
    * code. Works on the locally owned cells of a parallel::shared triangulation.
    */
-  class ToolContact
+  class ToolContact : public ContactBase<ToolContactResult>
   {
   public:
     /**
@@ -108,16 +109,6 @@ namespace densify
     /// along the tool surface matters, through friction).
     void
     set_tool_translation(const ToolKind kind, const Tensor<1, 3> &translation);
-
-    /**
-     * The displacement of the last accepted increment (with ghost entries),
-     * from which friction measures slip; must outlive this object's use.
-     */
-    void
-    set_committed_solution(const TrilinosWrappers::MPI::Vector &committed)
-    {
-      committed_solution = &committed;
-    }
 
     /// Set the regularisation slip of the arctangent law (mm) for the next
     /// increment.
@@ -150,55 +141,6 @@ namespace densify
     }
 
     /**
-     * Add the contact contributions to the residual @p residual (R = f_int -
-     * f_ext, so contact adds -(p n + t) . phi) and, if @p matrix is not null,
-     * to the tangent. @p solution must have ghost entries. Quadrature points
-     * not in contact but closer than @p tangent_margin (mm) get the penalty
-     * stiffness in the tangent only (a predictor for contacts about to close;
-     * the residual, hence the converged state, is unaffected). Returns forces,
-     * summed over all ranks. Needs compress() on @p residual and @p matrix
-     * afterwards.
-     */
-    ToolContactResult
-    assemble(const Mapping<3>                    &mapping,
-             const TrilinosWrappers::MPI::Vector &solution,
-             TrilinosWrappers::MPI::Vector       &residual,
-             TrilinosWrappers::SparseMatrix      *matrix,
-             const double                         tangent_margin = 0.) const;
-
-    /// Evaluate forces and penetration only (summed over ranks).
-    ToolContactResult
-    evaluate(const Mapping<3>                    &mapping,
-             const TrilinosWrappers::MPI::Vector &solution) const;
-
-    /**
-     * assemble() without a tangent and commit() in one pass: add the contact
-     * forces at @p solution to @p residual and accept @p solution as the
-     * start of the next increment (explicit dynamics, where every step is
-     * accepted). The result carries the friction work of the increment.
-     * With @p relaxation r > 0 each multiplier then moves towards its
-     * pressure, lambda += r (p - lambda): an integral action that removes
-     * the penetration of lasting contacts over about 1/r calls, so that the
-     * penalty does not bias the slowly loaded (quasi-static) answer.
-     */
-    ToolContactResult
-    assemble_and_commit(const Mapping<3>                    &mapping,
-                        const TrilinosWrappers::MPI::Vector &solution,
-                        TrilinosWrappers::MPI::Vector       &residual,
-                        const double                         relaxation = 0.);
-
-    /// lambda <- max(0, lambda - eps g) at every quadrature point.
-    void
-    update_multipliers(const Mapping<3>                    &mapping,
-                       const TrilinosWrappers::MPI::Vector &solution);
-
-    /// Accept @p solution: its tangential tractions, slips and tool
-    /// translations become the committed state of the next increment.
-    void
-    commit(const Mapping<3>                    &mapping,
-           const TrilinosWrappers::MPI::Vector &solution);
-
-    /**
      * Lumped L2 projection of pressure (sum over tools), accumulated slip and
      * stick/slip status onto the scalar field of @p post_dof_handler (same
      * triangulation): adds int phi_i f to the field sums and int phi_i to the
@@ -210,54 +152,50 @@ namespace densify
                    const DoFHandler<3>                 &post_dof_handler,
                    SurfaceFieldSums                    &sums) const;
 
-    /// Everything a roll-back or a checkpoint must restore.
-    struct State
+    std::string
+    name() const override
     {
-      /// Normal multipliers.
-      std::vector<double> lambda;
-      /// Committed tangential tractions.
-      std::vector<Tensor<1, 3>> traction;
-      /// Accumulated slip.
-      std::vector<double> slip;
-      /// Committed tool translations.
-      std::vector<Tensor<1, 3>> translation;
+      return "tool contact";
+    }
 
-      /// Write or read the state with a boost archive (checkpoints).
-      template <class Archive>
-      void
-      serialize(Archive &archive, const unsigned int /*version*/)
-      {
-        archive &lambda &traction &slip &translation;
-      }
-    };
+    /// Multipliers, friction history and the committed tool translations.
+    using State = ContactState;
 
-    /// The state (multipliers and friction history).
     State
-    state() const
+    state() const override
     {
       return {lambda, committed_traction, accumulated_slip, committed_shift};
     }
 
-    /// Restore a state saved by state() (same setup).
     void
-    set_state(const State &saved)
+    set_state(const State &saved) override
     {
-      lambda             = saved.lambda;
-      committed_traction = saved.traction;
-      accumulated_slip   = saved.slip;
-      committed_shift    = saved.translation;
+      ContactBase<ToolContactResult>::set_state(saved);
+      committed_shift = saved.translation;
+    }
+
+  protected:
+    ToolContactResult
+    pass(const Mapping<3>                    &mapping,
+         const TrilinosWrappers::MPI::Vector &solution,
+         const ContactOutputs                &out) const override;
+
+    bool
+    friction_on() const override
+    {
+      return has_friction();
+    }
+
+    void
+    commit_motion() override
+    {
+      committed_shift = shift;
     }
 
   private:
     /// What one pass over the contact points writes besides the forces.
-    struct Outputs
+    struct Outputs : ContactOutputs
     {
-      TrilinosWrappers::MPI::Vector  *residual       = nullptr;
-      TrilinosWrappers::SparseMatrix *matrix         = nullptr;
-      double                          tangent_margin = 0.;
-      std::vector<double>            *new_lambda     = nullptr;
-      std::vector<Tensor<1, 3>>      *new_traction   = nullptr;
-      std::vector<double>            *new_slip       = nullptr;
       const DoFHandler<3>            *post           = nullptr;
       SurfaceFieldSums               *sums           = nullptr;
       std::vector<double>            *particle_force = nullptr;
@@ -271,7 +209,6 @@ namespace densify
          const Outputs                       &out) const;
 
     const DoFHandler<3>                 *dof_handler        = nullptr;
-    const TrilinosWrappers::MPI::Vector *committed_solution = nullptr;
     std::vector<RigidTool>               tool_list;
     std::vector<FrictionLaw>             friction_laws;
     std::vector<Tensor<1, 3>>            shift, committed_shift;
@@ -279,9 +216,6 @@ namespace densify
     Quadrature<2>                        face_quadrature;
     std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
                               faces;
-    std::vector<double>       lambda;
-    std::vector<Tensor<1, 3>> committed_traction;
-    std::vector<double>       accumulated_slip;
   };
 
   /**

@@ -24,6 +24,19 @@ namespace densify
 
   class MumpsFactorization;
 
+  /// The linear solvers (Solver/Linear solver with 'auto' resolved).
+  enum class LinearSolverType
+  {
+    /// CG with ML AMG (symmetric tangents).
+    cg_amg,
+    /// GMRES with ML AMG (nonsymmetric tangents).
+    gmres_amg,
+    /// GMRES preconditioned by the MUMPS factors of an earlier tangent.
+    gmres_lu,
+    /// MUMPS.
+    direct
+  };
+
   /**
    * Solves K x = b for the Newton tangent K.
    * "cg-amg": Trilinos CG preconditioned by ML smoothed-aggregation AMG whose
@@ -38,7 +51,7 @@ namespace densify
   {
   public:
     /**
-     * @p type "cg-amg", "gmres-amg", "direct" or "gmres-lu"; tolerance
+     * @p type the solver; tolerance
      * relative to |b|. With
      * @p reuse_amg, the AMG hierarchy is kept across solves until CG needs
      * more than twice the iterations it needed right after the last setup
@@ -47,12 +60,12 @@ namespace densify
      * (sequential MUMPS), so that runs on several ranks repeat exactly.
      * Times go into @p timer.
      */
-    LinearSolver(const std::string &type,
-                 const double       tolerance,
-                 const unsigned int max_iterations,
-                 const bool         reuse_amg,
-                 const bool         reproducible,
-                 TimerOutput       &timer);
+    LinearSolver(const LinearSolverType type,
+                 const double           tolerance,
+                 const unsigned int     max_iterations,
+                 const bool             reuse_amg,
+                 const bool             reproducible,
+                 TimerOutput           &timer);
 
     /// Out of line: MumpsFactorization is complete only there.
     ~LinearSolver();
@@ -130,7 +143,7 @@ namespace densify
     void
     setup_amg(const TrilinosWrappers::SparseMatrix &matrix);
 
-    const std::string  type;
+    const LinearSolverType type;
     const double       tolerance;
     const unsigned int max_iterations;
     const bool         reuse_amg;

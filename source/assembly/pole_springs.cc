@@ -1,24 +1,23 @@
-// Pole springs of the Simulator (Contact/Hold poles on axis): horizontal
-// springs on the top and bottom pole vertex of every particle, holding them
-// on the vertical line through its centre (true) or keeping the axis through
-// them vertical (vertical), and for a vertical stack one spring against the
-// spin about that axis.
+// The pole springs (Contact/Hold poles on axis).
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/full_matrix.h>
 
-#include <densify/simulator.h>
+#include <densify/assembly/pole_springs.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace densify
 {
-  void
-  Simulator::setup_pole_springs()
+  PoleSprings::PoleSprings(const DoFHandler<3>         &dof_handler,
+                           const std::vector<Particle> &particles,
+                           const std::vector<double>   &stiffness,
+                           const bool                   vertical,
+                           const bool                   spin_springs)
+    : comm(dof_handler.get_communicator())
   {
-    pole_springs.clear();
-    if (prm.contact.hold_poles == "false")
-      return;
+    const IndexSet &locally_owned = dof_handler.locally_owned_dofs();
     // the pole vertices' horizontal DoFs of each particle: [p][top?][d]. The
     // shared triangulation knows every cell, so every rank finds all of them
     constexpr types::global_dof_index none = numbers::invalid_dof_index;
@@ -47,12 +46,10 @@ namespace densify
               pole[p][r[2] > 0 ? 1 : 0][d] = cell->vertex_dof_index(v, d);
           }
       }
-    // the stiffness of a penalty contact on an element face: penalty * h^2
     unsigned int n_found = 0;
     for (unsigned int p = 0; p < particles.size(); ++p)
       {
-        const double k = prm.contact.penalty_factor *
-                         particle_material[p]->youngs_modulus() * h_min;
+        const double k = stiffness[p];
         for (unsigned int d = 0; d < 2; ++d)
           {
             const types::global_dof_index bottom = pole[p][0][d],
@@ -60,27 +57,26 @@ namespace densify
             n_found += (bottom != none) + (top != none);
             if (bottom == none || top == none)
               continue;
-            if (prm.contact.hold_poles == "vertical")
+            if (vertical)
               {
                 // one spring between the poles, added by the owner of one
                 if (locally_owned.is_element(top))
-                  pole_springs.push_back({top, bottom, k});
+                  springs.push_back({top, bottom, k});
               }
             else
               for (const types::global_dof_index i : {bottom, top})
                 if (locally_owned.is_element(i))
-                  pole_springs.push_back({i, none, k});
+                  springs.push_back({i, none, k});
           }
         // against the spin: between that vertex's y DoF and the top pole's.
-        // Only for a vertical stack (true with particle contact): flat
+        // Only for a vertical stack (axis with particle contact): flat
         // frictionless punches exert no torque about the axis, the facets of
         // another particle do. In a layer (vertical) the spring changed the
         // frictionless seven-sphere test's contact force by 12 % and let the
         // outer ring drift by 0.18 mm, which it does not do without it
-        if (prm.contact.hold_poles == "true" && has_particle_contact &&
-            spin[p] != none && pole[p][1][1] != none &&
+        if (spin_springs && spin[p] != none && pole[p][1][1] != none &&
             locally_owned.is_element(spin[p]))
-          pole_springs.push_back({spin[p], pole[p][1][1], k});
+          springs.push_back({spin[p], pole[p][1][1], k});
       }
     if (n_found != 4 * particles.size())
       throw std::runtime_error(
@@ -93,9 +89,9 @@ namespace densify
 
 
   void
-  Simulator::add_pole_couplings(TrilinosWrappers::SparsityPattern &pattern)
+  PoleSprings::add_couplings(TrilinosWrappers::SparsityPattern &pattern)
   {
-    for (const PoleSpring &s : pole_springs)
+    for (const Spring &s : springs)
       if (s.j != numbers::invalid_dof_index)
         {
           pattern.add(s.i, s.j);
@@ -106,36 +102,38 @@ namespace densify
 
 
 
-  double
-  Simulator::add_pole_springs(const bool with_matrix)
+  void
+  PoleSprings::assemble(const AssemblyContext          &context,
+                        TrilinosWrappers::MPI::Vector  &residual,
+                        TrilinosWrappers::SparseMatrix *tangent)
   {
-    double force2 = 0;
-    for (const PoleSpring &s : pole_springs)
+    const TrilinosWrappers::MPI::Vector &u      = *context.solution;
+    double                               force2 = 0;
+    for (const Spring &s : springs)
       if (s.j == numbers::invalid_dof_index)
         {
           // towards zero
-          const double f = s.k * solution(s.i);
+          const double f = s.k * u(s.i);
           residual(s.i) += f;
           force2 += f * f;
-          if (with_matrix)
-            tangent.add(s.i, s.i, s.k);
+          if (tangent != nullptr)
+            tangent->add(s.i, s.i, s.k);
         }
       else
         {
           // between two poles (the bottom one may belong to another rank)
-          const double f =
-            s.k * (solution_ghosted(s.i) - solution_ghosted(s.j));
+          const double f = s.k * (u(s.i) - u(s.j));
           const std::vector<types::global_dof_index> dofs = {s.i, s.j};
           residual.add(dofs, std::vector<double>{f, -f});
           force2 += f * f;
-          if (with_matrix)
+          if (tangent != nullptr)
             {
               FullMatrix<double> k(2, 2);
               k(0, 0) = k(1, 1) = s.k;
               k(0, 1) = k(1, 0) = -s.k;
-              tangent.add(dofs, k);
+              tangent->add(dofs, k);
             }
         }
-    return std::sqrt(Utilities::MPI::sum(force2, comm));
+    last_force = std::sqrt(Utilities::MPI::sum(force2, comm));
   }
 } // namespace densify

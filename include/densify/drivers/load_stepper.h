@@ -1,0 +1,134 @@
+// The load stepper of the implicit method: each load step in one or more
+// increments, each solved by Newton inside an augmentation loop, with a
+// predictor and cut-backs.
+#pragma once
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <densify/solvers/newton_solver.h>
+#include <densify/utilities.h>
+
+#include <string>
+
+namespace densify
+{
+  /**
+   * What the load stepper needs of a problem besides Newton's: loads at a
+   * time, the constraints' augmentation, and the state to commit or roll
+   * back.
+   */
+  class IncrementalProblem : public NonlinearProblem
+  {
+  public:
+    /**
+     * Set the loads for time @p time, reached by an increment of duration
+     * @p increment; returns the travel of the load (e.g. of the punch) over
+     * the increment (mm), the scale of the predictor.
+     */
+    virtual double
+    set_loads(const double time, const double increment) = 0;
+
+    /// Evaluate the constraints at the current solution (e.g. the contact
+    /// forces); returns their largest violation (e.g. penetration, mm).
+    virtual double
+    evaluate_constraints() = 0;
+
+    /// Update the multipliers of the constraints (augmentation).
+    virtual void
+    update_multipliers() = 0;
+
+    /// Keep the committed state for a roll-back.
+    virtual void
+    save_state() = 0;
+
+    /// Go back to the state kept by save_state() (the solution is restored
+    /// by the stepper).
+    virtual void
+    restore_state() = 0;
+
+    /// Accept the current solution as the end of an increment.
+    virtual void
+    commit() = 0;
+  };
+
+  /// Settings of the load stepper.
+  struct LoadStepperControl
+  {
+    /// Duration of a load step (s).
+    double step_length = 1.;
+    /// Halvings of an increment in a row before giving up.
+    unsigned int max_cutbacks = 8;
+    /// Constraint violation accepted without another augmentation.
+    double gap_tolerance = 1e-4;
+    /// Most augmentations per increment.
+    unsigned int max_augmentations = 20;
+    /// Newton iterations up to which an increment counts as easy (the next
+    /// one may be twice as long, up to a step).
+    unsigned int easy_newton_iterations = 10;
+  };
+
+  /// Counts of one load step.
+  struct StepCounts
+  {
+    unsigned int newton_iterations = 0, linear_iterations = 0,
+                 augmentations = 0, cutbacks = 0, increments = 0;
+  };
+
+  /**
+   * Advances an IncrementalProblem from load step to load step. Each
+   * increment starts from a predictor (the last increment extrapolated in
+   * proportion to the load's travel), then solves by Newton and updates the
+   * multipliers until the constraint violation is below the tolerance. A
+   * failed increment is rolled back and retried with half the size (at most
+   * max_cutbacks times in a row); increments grow again after easy ones.
+   */
+  class LoadStepper
+  {
+  public:
+    LoadStepper(const LoadStepperControl &control,
+                NewtonSolver             &newton,
+                ConditionalOStream       &out);
+
+    /// Allocate the vectors like @p solution; the first increment is a
+    /// whole step.
+    void
+    setup(const TrilinosWrappers::MPI::Vector &solution);
+
+    /**
+     * Advance from @p current_time, the time of the last accepted increment,
+     * to @p time (the end of load step @p step); @p current_time follows the
+     * accepted increments. Throws ConvergenceError if an increment fails
+     * after every cut-back (the problem is back at the last converged
+     * increment).
+     */
+    void
+    advance_to(IncrementalProblem &problem,
+               double             &current_time,
+               const double        time,
+               const unsigned int  step,
+               StepCounts         &counts);
+
+    /// Size of the next increment (s).
+    double next_increment = 0.;
+    /// The converged increment of the solution, and the load travel that
+    /// caused it (the predictor).
+    TrilinosWrappers::MPI::Vector last_increment;
+    double                        last_travel = 0.;
+
+  private:
+    /// One increment to @p time: predictor, then Newton inside the
+    /// multiplier updates. Throws std::runtime_error on failure.
+    void
+    solve_increment(IncrementalProblem &problem,
+                    const double        current_time,
+                    const double        time,
+                    const unsigned int  step,
+                    StepCounts         &counts);
+
+    const LoadStepperControl control;
+    NewtonSolver            &newton;
+    ConditionalOStream      &out;
+  };
+} // namespace densify

@@ -1,0 +1,147 @@
+// The load stepper of the implicit method.
+#include <densify/drivers/load_stepper.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace densify
+{
+  LoadStepper::LoadStepper(const LoadStepperControl &control,
+                           NewtonSolver             &newton,
+                           ConditionalOStream       &out)
+    : control(control)
+    , newton(newton)
+    , out(out)
+  {}
+
+
+
+  void
+  LoadStepper::setup(const TrilinosWrappers::MPI::Vector &solution)
+  {
+    last_increment.reinit(solution.locally_owned_elements(),
+                          solution.get_mpi_communicator());
+    last_travel    = 0.;
+    next_increment = control.step_length;
+  }
+
+
+
+  void
+  LoadStepper::solve_increment(IncrementalProblem &problem,
+                               const double        current_time,
+                               const double        time,
+                               const unsigned int  step,
+                               StepCounts         &counts)
+  {
+    const double travel = problem.set_loads(time, time - current_time);
+    // predictor: extrapolate the last increment in proportion to the load's
+    // travel
+    TrilinosWrappers::MPI::Vector &solution = problem.solution_vector();
+    const TrilinosWrappers::MPI::Vector start = solution;
+    if (last_travel > 0)
+      solution.add(travel / last_travel, last_increment);
+
+    double violation = 0.;
+    for (unsigned int aug = 0;; ++aug)
+      {
+        // predictor margin: constraints within this increment's travel
+        const auto [n_newton, n_linear] =
+          newton.solve(problem, step, aug == 0 ? travel : 0.);
+        counts.newton_iterations += n_newton;
+        counts.linear_iterations += n_linear;
+        violation = problem.evaluate_constraints();
+        if (violation <= control.gap_tolerance ||
+            aug == control.max_augmentations)
+          break;
+        problem.update_multipliers();
+        ++counts.augmentations;
+      }
+    if (violation > control.gap_tolerance)
+      out << "  warning: penetration " << violation
+          << " mm above Contact/Gap tolerance after "
+          << control.max_augmentations
+          << " augmentations; raise Contact/Maximum augmentations or "
+             "Contact/Penalty factor"
+          << std::endl;
+
+    // the converged increment, for the next predictor
+    last_increment = solution;
+    last_increment -= start;
+    last_travel = travel;
+  }
+
+
+
+  void
+  LoadStepper::advance_to(IncrementalProblem &problem,
+                          double             &current_time,
+                          const double        time,
+                          const unsigned int  step,
+                          StepCounts         &counts)
+  {
+    const double step_length       = control.step_length;
+    double       dt                = next_increment;
+    unsigned int cutbacks_in_a_row = 0;
+    while (current_time < time - 1e-12 * step_length)
+      {
+        // the increment that reaches the end of the step ends exactly there:
+        // a round-off remainder would make one more, tiny increment, and the
+        // next step would start from it
+        const bool   last  = dt >= (time - current_time) * (1. - 1e-9);
+        const double t_end = last ? time : current_time + dt;
+        // what a failed increment must restore
+        const TrilinosWrappers::MPI::Vector saved_solution = problem.solution_vector();
+        const TrilinosWrappers::MPI::Vector saved_increment = last_increment;
+        const double                        saved_travel    = last_travel;
+        problem.save_state();
+        const unsigned int newton_before = counts.newton_iterations;
+        try
+          {
+            solve_increment(problem, current_time, t_end, step, counts);
+          }
+        catch (const std::runtime_error &e)
+          {
+            dt                 = t_end - current_time;
+            problem.solution_vector() = saved_solution;
+            last_increment     = saved_increment;
+            last_travel        = saved_travel;
+            problem.restore_state();
+            // at most max_cutbacks halvings in a row, and never below
+            // step_length / 2^max_cutbacks (a load that can only creep on in
+            // ever smaller increments, e.g. beyond the friction limit, stops)
+            const double smallest =
+              step_length *
+              std::ldexp(1., -static_cast<int>(control.max_cutbacks));
+            if (cutbacks_in_a_row == control.max_cutbacks ||
+                dt / 2 < smallest * (1 - 1e-9))
+              throw ConvergenceError(
+                std::string(e.what()) +
+                (control.max_cutbacks > 0 ?
+                   " (also after " + std::to_string(counts.cutbacks) +
+                     " cut-backs, the increment down to " +
+                     std::to_string(dt / step_length) +
+                     " of a step; raise Time stepping/Maximum cut-backs)" :
+                   " (no cut-back tried: Time stepping/Maximum cut-backs = "
+                   "0)"));
+            dt /= 2;
+            ++cutbacks_in_a_row;
+            ++counts.cutbacks;
+            out << "  step " << step << ": increment cut back to "
+                << std::setprecision(3) << dt / step_length << " of a step ("
+                << one_line(e.what()) << ")" << std::endl;
+            continue;
+          }
+        // accepted: commit the history of the material and of friction
+        problem.commit();
+        current_time = t_end;
+        ++counts.increments;
+        cutbacks_in_a_row = 0;
+        // easy increments let the increment grow again, up to a full step
+        if (counts.newton_iterations - newton_before <=
+            control.easy_newton_iterations)
+          dt = std::min(2 * dt, step_length);
+      }
+    next_increment = dt;
+  }
+} // namespace densify

@@ -1,0 +1,208 @@
+// Newton's method with step limiter and line search.
+#include <densify/solvers/newton_solver.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace densify
+{
+  NewtonSolver::NewtonSolver(const NewtonControl &control,
+                             ConditionalOStream  &out)
+    : control(control)
+    , out(out)
+  {}
+
+
+
+  std::pair<unsigned int, unsigned int>
+  NewtonSolver::solve(NonlinearProblem  &problem,
+                      const unsigned int step,
+                      const double       margin)
+  {
+    TrilinosWrappers::MPI::Vector &solution = problem.solution_vector();
+    TrilinosWrappers::MPI::Vector &residual = problem.residual_vector();
+    TrilinosWrappers::MPI::Vector  increment(solution);
+    const double                   tol = control.tolerance;
+
+    unsigned int linear_iterations = 0;
+    problem.begin_solve();
+    NonlinearProblem::Evaluation current = problem.assemble(true, margin, false);
+    if (problem.after_update() > 0)
+      current = problem.assemble(true, margin, false);
+    double line_search_step = 1.;
+    // the first trial of a line search is assembled with the tangent, which
+    // serves the next Newton iteration if the trial is kept; it is wasted if
+    // the line search goes on or the problem changes after the update (e.g.
+    // contact points change their master facet). So after an iteration
+    // whose first trial was not kept, the next first trial is assembled
+    // without it (the late steps of the paper scene keep fewer than half of
+    // their first trials)
+    bool first_trial_kept = true;
+    // inexact Newton (Solver/Adaptive linear tolerance): the forcing term
+    // eta of Eisenstat and Walker (1996), choice 2 with gamma = 0.9 (their
+    // safeguard acts only above 0.1, beyond eta_max here)
+    constexpr double eta_max = 1e-2;
+    double           eta     = eta_max;
+    history.clear();
+    for (unsigned int it = 0; it <= control.max_iterations; ++it)
+      {
+        history.push_back(current.residual_norm);
+        const double target =
+          std::max(tol * current.reference_norm, control.floor);
+        if (control.verbose)
+          out << "    newton " << it << ": |R| = " << std::scientific
+              << std::setprecision(3) << current.residual_norm << " (target "
+              << target << "), " << current.description
+              << problem.iteration_details() << ", line search "
+              << std::defaultfloat << line_search_step << std::endl;
+        if (current.residual_norm <= target)
+          return {it, linear_iterations};
+        if (it == control.max_iterations)
+          break;
+
+        if (control.adaptive_linear_tolerance && it > 0)
+          {
+            const double ratio = current.residual_norm / history[it - 1];
+            eta                = 0.9 * ratio * ratio;
+            // no more accuracy than the Newton target can use
+            eta = std::max(eta, 0.1 * target / current.residual_norm);
+            eta = std::min(eta, eta_max);
+          }
+        double phi0;
+        {
+          residual *= -1.;
+          increment = 0;
+          linear_iterations +=
+            problem.solve_linear(residual,
+                                 increment,
+                                 control.adaptive_linear_tolerance ?
+                                   std::max(eta, control.linear_tolerance) :
+                                   0.);
+          // R.du, with residual = -R here
+          phi0 = -(residual * increment);
+        }
+
+        // step limiter: no entry moves by more than the limit in one
+        // iteration (nearly free rigid-body modes would otherwise take huge,
+        // at finite strain distorting, steps)
+        const double max_step = increment.linfty_norm();
+        const double limit    = control.step_limit;
+        // line search: "residual" backtracks until |R| falls; "energy" looks
+        // for the step where phi(s) = R(u + s du).du, the derivative of the
+        // incremental energy along du, has fallen to half of |phi(0)|
+        // (regula falsi with the Illinois modification in a bracket of phi's
+        // sign change). phi(0) = -du.K.du < 0 unless du is no descent
+        // direction; then the residual search is used.
+        const double r0     = current.residual_norm;
+        const double s_max  = (max_step > limit ? limit / max_step : 1.);
+        const bool   energy = control.line_search == LineSearch::energy &&
+                            phi0 < 0;
+        double       s = s_max, s_applied = 0;
+        double       lo = 0, phi_lo = phi0, hi = s_max;
+        double       phi_hi = std::numeric_limits<double>::infinity();
+        int          kept   = 0; // Illinois: the bracket end moved last
+        NonlinearProblem::Evaluation trial;
+        bool                         have_matrix = true;
+        unsigned int                 n_trials    = 0;
+        for (unsigned int ls = 0;; ++ls)
+          {
+            solution.add(s - s_applied, increment);
+            s_applied   = s;
+            have_matrix = (ls == 0 && first_trial_kept);
+            n_trials    = ls + 1;
+            bool failed = false;
+            try
+              {
+                // the first trial refreshes the search, with or without the
+                // tangent, so that its residual is the same
+                trial = problem.assemble(have_matrix, 0., ls == 0);
+              }
+            catch (const std::runtime_error &)
+              {
+                // e.g. an element inverted by the full step: try a shorter
+                // one (the failure is collective, so all ranks agree)
+                if (ls == 8)
+                  throw;
+                trial.residual_norm = std::numeric_limits<double>::infinity();
+                failed              = true;
+              }
+            const double phi = (energy && !failed) ? residual * increment : 0.;
+            // a NaN in the residual: a failed trial (thrown below if the
+            // last)
+            failed = failed || !std::isfinite(phi);
+            if (control.verbose)
+              {
+                out << "        trial step " << s
+                    << ": |R| = " << trial.residual_norm;
+                if (energy)
+                  out << ", R.du/|R0.du| = " << phi / std::abs(phi0);
+                out << ", " << trial.description << std::endl;
+              }
+            if (!energy)
+              {
+                if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
+                  break;
+                // back to u, then the shorter step
+                solution.add(-s, increment);
+                s_applied = 0;
+                s *= 0.5;
+                continue;
+              }
+            if (ls == 8 || (!failed && (std::abs(phi) <= 0.5 * std::abs(phi0) ||
+                                        (phi < 0 && s == s_max))))
+              break;
+            if (failed || phi > 0)
+              {
+                hi     = s;
+                phi_hi = failed ? std::numeric_limits<double>::infinity() : phi;
+                if (kept == 1)
+                  phi_lo *= 0.5;
+                kept = 1;
+              }
+            else
+              {
+                lo     = s;
+                phi_lo = phi;
+                if (kept == -1)
+                  phi_hi *= 0.5;
+                kept = -1;
+              }
+            s = std::isfinite(phi_hi) ?
+                  lo + (hi - lo) * phi_lo / (phi_lo - phi_hi) :
+                  0.5 * (lo + hi);
+            s = std::min(std::max(s, lo + 0.01 * (hi - lo)),
+                         hi - 0.01 * (hi - lo));
+          }
+        s = s_applied;
+        if (!std::isfinite(trial.residual_norm))
+          throw std::runtime_error(
+            "step " + std::to_string(step) +
+            ": the residual became NaN or infinite; try more steps "
+            "(Time stepping/Number of steps) or a smaller Contact/Penalty "
+            "factor");
+        if (control.verbose)
+          out << "      line search: max|du| " << std::setprecision(3)
+              << max_step << ", step " << s << std::endl;
+        const unsigned int n_changed = problem.after_update();
+        if (control.verbose && n_changed > 0)
+          out << "      " << n_changed
+              << " changes after the update need a new assembly" << std::endl;
+        current = (have_matrix && n_changed == 0) ?
+                    trial :
+                    problem.assemble(true, 0., false);
+        first_trial_kept = n_trials == 1 && n_changed == 0;
+        line_search_step = s;
+      }
+    std::ostringstream msg;
+    msg << "step " << step << ": Newton did not converge in "
+        << control.max_iterations << " iterations (residual "
+        << std::scientific << std::setprecision(2) << current.residual_norm
+        << " N, target "
+        << std::max(tol * current.reference_norm, control.floor)
+        << " N); try more steps (Time stepping/Number of steps) or raise "
+           "Solver/Maximum Newton iterations";
+    throw std::runtime_error(msg.str());
+  }
+} // namespace densify
