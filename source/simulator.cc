@@ -744,8 +744,11 @@ namespace densify
             {
               const std::size_t i =
                 cell->active_cell_index() * history_per_cell + k;
+              const Material &material =
+                *particle_material[cell->material_id()];
               const char plastic =
-                trial_history[i].eps_p > committed_history[i].eps_p;
+                material.equivalent_plastic_strain(trial_history[i]) >
+                material.equivalent_plastic_strain(committed_history[i]);
               n += plastic;
               changed += (plastic != was_plastic[i]);
               was_plastic[i] = plastic;
@@ -1298,7 +1301,9 @@ namespace densify
               const double       vm    = von_mises(P, F);
               const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
               const double       eps_p =
-                has_history ? committed_history[k].eps_p : 0.;
+                has_history ?
+                        material.equivalent_plastic_strain(committed_history[k]) :
+                        0.;
               for (unsigned int i = 0; i < post_dofs.size(); ++i)
                 {
                   const double v =

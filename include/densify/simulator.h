@@ -21,6 +21,7 @@
 #include <densify/contact/tool_contact.h>
 #include <densify/drivers/explicit_dynamics.h>
 #include <densify/geometry/particles.h>
+#include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
 #include <densify/postprocess/statistics.h>

@@ -10,6 +10,8 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <densify/assembly/nodal_averaging.h>
+#include <densify/material/factory.h>
+#include <densify/material/j2_plasticity.h>
 
 #include <Epetra_CrsMatrix.h>
 
@@ -113,7 +115,8 @@ namespace densify
         return true;
       }
     if (remedy == "auto")
-      return prm.mesh.degree == 1 && prm.material.model == "J2 plasticity";
+      return prm.mesh.degree == 1 && parse_material_model(prm.material.model) ==
+                                       MaterialModel::j2_plasticity;
     return false;
   }
 
