@@ -55,9 +55,7 @@ namespace densify
     Effects e;
     e.method = (prm.solver.method == "explicit" ? Method::explicit_dynamics :
                                                   Method::implicit);
-    e.law    = (prm.material.model == "J2 plasticity" ?
-                  MaterialLaw::j2_plasticity :
-                  MaterialLaw::elastic);
+    e.law    = parse_material_model(prm.material.model);
     e.finite_strain = prm.material.finite_strain;
 
     // the locking remedy: nodal averaging for linear tetrahedra under
@@ -70,7 +68,7 @@ namespace densify
         "none or auto)");
     e.locking = (remedy == "nodal averaging" ||
                  (remedy == "auto" && prm.mesh.degree == 1 &&
-                  e.law == MaterialLaw::j2_plasticity)) ?
+                  e.law == MaterialModel::j2_plasticity)) ?
                   LockingRemedy::nodal_averaging :
                   LockingRemedy::none;
 
@@ -101,10 +99,10 @@ namespace densify
         "Contact/Contact points = vertices is for P1 elements (the edge "
         "midpoints of P2 would not be held): set it to auto or Gauss points, "
         "or Mesh/Polynomial degree = 1");
-    e.contact_points = (points == "vertices" ||
-                        (points == "auto" && prm.mesh.degree == 1)) ?
-                         ContactPoints::vertices :
-                         ContactPoints::gauss;
+    e.contact_points =
+      (points == "vertices" || (points == "auto" && prm.mesh.degree == 1)) ?
+        ContactPoints::vertices :
+        ContactPoints::gauss;
 
     // the tangents and the linear solver: the consistent (nonsymmetric)
     // friction tangent with GMRES where friction acts, CG otherwise
@@ -127,11 +125,10 @@ namespace densify
       e.any_friction() &&
       (tangent == "consistent" || (tangent == "auto" && !cg));
     if (solver == "auto")
-      e.linear_solver =
-        (e.consistent_friction_tangent ||
-         (e.particle_contact && geometric == "true")) ?
-          LinearSolverType::gmres_amg :
-          LinearSolverType::cg_amg;
+      e.linear_solver = (e.consistent_friction_tangent ||
+                         (e.particle_contact && geometric == "true")) ?
+                          LinearSolverType::gmres_amg :
+                          LinearSolverType::cg_amg;
     else
       e.linear_solver = solver == "cg-amg"    ? LinearSolverType::cg_amg :
                         solver == "gmres-amg" ? LinearSolverType::gmres_amg :
@@ -142,8 +139,8 @@ namespace densify
       (geometric == "true" ||
        (geometric == "auto" && e.linear_solver != LinearSolverType::cg_amg &&
         e.particle_friction <= 0));
-    e.line_search = (prm.solver.line_search == "energy" ? LineSearch::energy :
-                                                          LineSearch::residual);
+    e.line_search   = (prm.solver.line_search == "energy" ? LineSearch::energy :
+                                                            LineSearch::residual);
     e.stabilisation = prm.solver.stabilisation > 0;
 
     // loads
@@ -151,9 +148,9 @@ namespace densify
 
     // the pole springs: for frictionless implicit scenes
     const std::string &poles = prm.contact.hold_poles;
-    e.poles = poles == "true"     ? PoleHolding::axis :
-              poles == "vertical" ? PoleHolding::vertical :
-                                    PoleHolding::none;
+    e.poles                  = poles == "true"     ? PoleHolding::axis :
+                               poles == "vertical" ? PoleHolding::vertical :
+                                                     PoleHolding::none;
     if (e.poles != PoleHolding::none)
       {
         for (unsigned int t = 0; t < n_tool_kinds; ++t)
@@ -180,9 +177,9 @@ namespace densify
       }
 
     const std::string &scaling = prm.explicit_dynamics.mass_scaling;
-    e.mass_scaling = scaling == "none"    ? MassScaling::none :
-                     scaling == "uniform" ? MassScaling::uniform :
-                                            MassScaling::selective;
+    e.mass_scaling             = scaling == "none"    ? MassScaling::none :
+                                 scaling == "uniform" ? MassScaling::uniform :
+                                                        MassScaling::selective;
     return e;
   }
 
@@ -234,7 +231,7 @@ namespace densify
     if (e.particle_contact)
       out << ", particle-particle contact ("
           << friction_text(e.particle_friction) << ")";
-    if (e.law == MaterialLaw::j2_plasticity)
+    if (e.law == MaterialModel::j2_plasticity)
       out << ", plastic history";
     if (e.locking == LockingRemedy::nodal_averaging)
       out << ", nodal-averaged F-bar (P1 locking remedy)";

@@ -194,12 +194,13 @@ main(int argc, char **argv)
     }
 
   std::string summary;
+  Scene       scene;
   try
     {
       read_parameters(prm, filename, overrides, &parameters.fidelity_summary);
       check_parameters(parameters);
-      parameters.fingerprint      = parameter_fingerprint(prm);
-      const Scene        scene    = build_scene(parameters);
+      parameters.fingerprint = parameter_fingerprint(prm);
+      scene                  = build_scene(parameters);
       // options that do not fit together are input errors too
       resolve_effects(parameters, scene);
       const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
@@ -249,6 +250,8 @@ main(int argc, char **argv)
     {
       simulator =
         std::make_unique<Simulator>(parameters, MPI_COMM_WORLD, true, control);
+      // the scene checked above, not built again
+      simulator->set_scene(std::move(scene));
       finished = simulator->run();
     }
   catch (const InputError &e)

@@ -216,7 +216,8 @@ namespace densify
   void
   Simulator::setup_particles()
   {
-    Scene scene      = build_scene(prm);
+    Scene scene = given_scene ? std::move(*given_scene) : build_scene(prm);
+    given_scene.reset();
     effects          = resolve_effects(prm, scene);
     particles        = std::move(scene.particles);
     upper_initial    = scene.upper_initial;
@@ -334,12 +335,13 @@ namespace densify
     stepper = std::make_unique<LoadStepper>(stepper_control, *newton, pcout);
     stepper->setup(solution);
 
-    linear_solver = std::make_unique<LinearSolver>(effects.linear_solver,
-                                                   prm.solver.linear_tolerance,
-                                                   prm.solver.max_linear_iterations,
-                                                   prm.solver.reuse_amg,
-                                                   prm.solver.reproducible,
-                                                   timer);
+    linear_solver =
+      std::make_unique<LinearSolver>(effects.linear_solver,
+                                     prm.solver.linear_tolerance,
+                                     prm.solver.max_linear_iterations,
+                                     prm.solver.reuse_amg,
+                                     prm.solver.reproducible,
+                                     timer);
     linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
   }
 
@@ -414,7 +416,7 @@ namespace densify
       {
         // the integral action on the penetration (Explicit/Contact
         // multiplier steps)
-        const unsigned int n_relax = prm.explicit_dynamics.multiplier_steps;
+        const unsigned int n_relax    = prm.explicit_dynamics.multiplier_steps;
         const double       relaxation = n_relax > 0 ? 1. / n_relax : 0.;
         if (tool_contact)
           tool_contact->set_relaxation(relaxation);
@@ -430,12 +432,13 @@ namespace densify
         for (const auto &m : particle_material)
           stiffness.push_back(prm.contact.penalty_factor * m->youngs_modulus() *
                               h_min);
-        pole_springs = std::make_unique<PoleSprings>(
-          dof_handler,
-          particles,
-          stiffness,
-          effects.poles == PoleHolding::vertical,
-          effects.poles == PoleHolding::axis && effects.particle_contact);
+        pole_springs =
+          std::make_unique<PoleSprings>(dof_handler,
+                                        particles,
+                                        stiffness,
+                                        effects.poles == PoleHolding::vertical,
+                                        effects.poles == PoleHolding::axis &&
+                                          effects.particle_contact);
         other_terms.push_back(pole_springs.get());
       }
     if (effects.stabilisation)
@@ -574,8 +577,7 @@ namespace densify
         // matrix pattern (without a tangent the next assembly with one
         // repeats the search and finds them)
         TimerOutput::Scope ts(timer, "Contact: search");
-        if (!particle_contact->update_search(solution_ghosted,
-                                             search_margin) &&
+        if (!particle_contact->update_search(solution_ghosted, search_margin) &&
             with_matrix)
           setup_matrix();
       }
@@ -583,14 +585,17 @@ namespace densify
     if (with_matrix)
       tangent = 0;
     Evaluation result;
-    result.reference_norm = assemble_terms(residual, with_matrix, tangent_margin);
-    result.residual_norm  = residual.l2_norm();
+    result.reference_norm =
+      assemble_terms(residual, with_matrix, tangent_margin);
+    result.residual_norm         = residual.l2_norm();
     const ContactResults contact = contact_results();
     std::ostringstream   text;
-    text << "contact points " << contact.tools.n_active + contact.particles.n_active
-         << " (slip " << contact.tools.n_slip + contact.particles.n_slip
-         << "), penetration (tools, particles) " << contact.tools.max_penetration
-         << ", " << contact.particles.max_penetration << " mm";
+    text << "contact points "
+         << contact.tools.n_active + contact.particles.n_active << " (slip "
+         << contact.tools.n_slip + contact.particles.n_slip
+         << "), penetration (tools, particles) "
+         << contact.tools.max_penetration << ", "
+         << contact.particles.max_penetration << " mm";
     result.description = text.str();
     return result;
   }
@@ -643,20 +648,27 @@ namespace densify
     if (!continuum->has_history())
       return "";
     // the material points yielding in this increment at the current
-    // iterate
-    const std::vector<MaterialState> &now = continuum->trial();
-    const std::vector<MaterialState> &old = continuum->committed();
+    // iterate, and how many of them changed since the last iterate
+    const std::vector<MaterialState> &now      = continuum->trial();
+    const std::vector<MaterialState> &old      = continuum->committed();
     const unsigned int                per_cell = continuum->states_per_cell();
-    unsigned long                     n        = 0;
+    unsigned long                     n = 0, changed = 0;
+    was_plastic.resize(now.size(), 0);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (unsigned int k = 0; k < per_cell; ++k)
           {
-            const std::size_t i = cell->active_cell_index() * per_cell + k;
-            n += now[i].eps_p > old[i].eps_p;
+            const std::size_t i      = cell->active_cell_index() * per_cell + k;
+            const Material &material = *particle_material[cell->material_id()];
+            const char plastic = material.equivalent_plastic_strain(now[i]) >
+                                 material.equivalent_plastic_strain(old[i]);
+            n += plastic;
+            changed += (plastic != was_plastic[i]);
+            was_plastic[i] = plastic;
           }
-    return ", yielding points " +
-           std::to_string(Utilities::MPI::sum(n, comm));
+    return ", yielding points " + std::to_string(Utilities::MPI::sum(n, comm)) +
+           " (changed " + std::to_string(Utilities::MPI::sum(changed, comm)) +
+           ")";
   }
 
 
@@ -859,8 +871,8 @@ namespace densify
   {
     TimerOutput::Scope t(timer, "Output: graphics");
     update_ghosts();
-    const NodalAveraging *nodal_averaging = continuum->fbar();
-    const bool            has_history     = continuum->has_history();
+    const NodalAveraging             *nodal_averaging = continuum->fbar();
+    const bool                        has_history = continuum->has_history();
     const std::vector<MaterialState> &committed_history =
       continuum->committed();
     const unsigned int history_per_cell = continuum->states_per_cell();
@@ -964,7 +976,9 @@ namespace densify
               const double       vm    = von_mises(P, F);
               const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
               const double       eps_p =
-                has_history ? committed_history[k].eps_p : 0.;
+                has_history ?
+                        material.equivalent_plastic_strain(committed_history[k]) :
+                        0.;
               for (unsigned int i = 0; i < post_dofs.size(); ++i)
                 {
                   const double v =
@@ -1009,9 +1023,9 @@ namespace densify
                                    surface);
     if (particle_contact)
       particle_contact->project_fields(*mapping,
-                                      solution_ghosted,
-                                      post_dof_handler,
-                                      surface);
+                                       solution_ghosted,
+                                       post_dof_handler,
+                                       surface);
     for (auto *v : {&vm_w,
                     &vm_m,
                     &surface.pressure,
@@ -1189,8 +1203,10 @@ namespace densify
       {
         // at rest at the start (or at the checkpoint's state, which
         // read_checkpoint() then restores)
-        const double dt = explicit_dynamics->start(
-          *this, solution, effects.mass_scaling != MassScaling::none);
+        const double dt =
+          explicit_dynamics->start(*this,
+                                   solution,
+                                   effects.mass_scaling != MassScaling::none);
         const auto [low, high] =
           std::minmax_element(explicit_penalty.begin(), explicit_penalty.end());
         pcout << "Explicit dynamics: time step " << std::setprecision(4) << dt

@@ -164,8 +164,8 @@ namespace densify
               tool_contact ? tool_contact->state() : ContactState();
             ContactState contacts =
               particle_contact ? particle_contact->state() : ContactState();
-            unsigned int           last_step = step;
-            double                 wall      = wall_seconds;
+            unsigned int last_step = step;
+            double       wall      = wall_seconds;
             archive &header &last_step &current_time &current_upper
               &next_increment &last_punch_increment &wall &solution_values
                 &increment_values &history &tools &contacts &pvd_records;

@@ -5,6 +5,7 @@
 #include <densify/assembly/lumped_mass.h>
 #include <densify/contact/contact_law.h>
 #include <densify/contact/rigid_tools.h>
+#include <densify/material/factory.h>
 #include <densify/parameters.h>
 #include <densify/scene.h>
 #include <densify/solvers/linear_solver.h>
@@ -31,13 +32,6 @@ namespace densify
     none,
     /// F-bar with the volume change averaged over each vertex's patch.
     nodal_averaging
-  };
-
-  /// The constitutive law of the particles (Material/Model).
-  enum class MaterialLaw
-  {
-    elastic,
-    j2_plasticity
   };
 
   /// How the free rigid-body modes are held (Contact/Hold poles on axis).
@@ -71,14 +65,14 @@ namespace densify
     /// Solver/Method.
     Method method = Method::implicit;
     /// The material law of every particle, and its kinematics.
-    MaterialLaw law           = MaterialLaw::elastic;
-    bool        finite_strain = false;
+    MaterialModel law           = MaterialModel::elastic;
+    bool          finite_strain = false;
     /// The locking remedy.
     LockingRemedy locking = LockingRemedy::none;
     /// The enabled tools, by ToolKind.
     std::array<bool, n_tool_kinds> tools = {{false, false, false}};
     /// Friction coefficient of each tool (by ToolKind) and between particles.
-    std::array<double, n_tool_kinds> tool_friction = {{0., 0., 0.}};
+    std::array<double, n_tool_kinds> tool_friction     = {{0., 0., 0.}};
     double                           particle_friction = 0.;
     /// The friction law of every contact pair.
     FrictionModel friction_model = FrictionModel::coulomb;

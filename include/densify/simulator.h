@@ -27,9 +27,11 @@
 #include <densify/drivers/load_stepper.h>
 #include <densify/effects.h>
 #include <densify/geometry/particles.h>
+#include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
 #include <densify/postprocess/statistics.h>
+#include <densify/scene.h>
 #include <densify/solvers/linear_solver.h>
 
 #include <array>
@@ -92,6 +94,14 @@ namespace densify
      */
     bool
     run();
+
+    /// Use @p scene, built by build_scene() from the same parameters,
+    /// instead of building it again in setup().
+    void
+    set_scene(Scene scene)
+    {
+      given_scene = std::make_unique<Scene>(std::move(scene));
+    }
 
     /// Set up particles, mesh and system without solving; run() calls it
     /// unless it was called before.
@@ -219,6 +229,8 @@ namespace densify
     contact_results() const;
     /// The contact results of the last evaluate_constraints().
     ContactResults last_contact;
+    /// Output/Verbose: which history points yielded at the last iterate.
+    std::vector<char> was_plastic;
 
     /// The context of an assembly at solution_ghosted.
     AssemblyContext
@@ -323,6 +335,8 @@ namespace densify
     ConditionalOStream            pcout;
     TimerOutput                   timer;
 
+    /// The scene given by set_scene(), until setup() takes it.
+    std::unique_ptr<Scene>                       given_scene;
     std::vector<Particle>                        particles;
     std::vector<std::shared_ptr<const Material>> particle_material;
     double                                       upper_initial = 0.;
@@ -371,10 +385,10 @@ namespace densify
 
     /// The implicit method: Newton's method, the load stepper, the linear
     /// solver; null with explicit dynamics.
-    std::unique_ptr<NewtonSolver>  newton;
-    std::unique_ptr<LoadStepper>   stepper;
-    std::unique_ptr<LinearSolver>  linear_solver;
-    double                         last_stabilisation_force = 0.;
+    std::unique_ptr<NewtonSolver> newton;
+    std::unique_ptr<LoadStepper>  stepper;
+    std::unique_ptr<LinearSolver> linear_solver;
+    double                        last_stabilisation_force = 0.;
 
     /**
      * Explicit dynamics: the lumped mass, the integrator and the contact
@@ -458,8 +472,8 @@ namespace densify
     /// (body work); the displacement at the last contact search.
     TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;
     /// The explicit run's last station account.
-    ExplicitDynamics::Account explicit_account;
-    std::vector<StepStatistics> step_statistics;
+    ExplicitDynamics::Account         explicit_account;
+    std::vector<StepStatistics>       step_statistics;
     std::unique_ptr<StatisticsWriter> statistics_writer;
     /// particles.csv: per particle and step, volume and mean displacement.
     std::ofstream particle_file;

@@ -1,17 +1,17 @@
 // The body force term.
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/fe/fe_values.h>
-
 #include <deal.II/lac/vector.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <densify/assembly/body_force.h>
 #include <densify/parameters.h>
 
 namespace densify
 {
-  BodyForce::BodyForce(const DoFHandler<3>                          &dof_handler,
-                       const Tensor<1, 3>                           &force,
+  BodyForce::BodyForce(const DoFHandler<3> &dof_handler,
+                       const Tensor<1, 3>  &force,
                        const std::vector<std::pair<double, double>> &table,
                        const unsigned int                            degree)
     : dof_handler(dof_handler)
@@ -27,14 +27,14 @@ namespace densify
                       TrilinosWrappers::MPI::Vector &forces,
                       TrilinosWrappers::SparseMatrix * /*tangent*/)
   {
-    const FiniteElement<3>          &fe = dof_handler.get_fe();
-    const QGaussSimplex<3>           quadrature(degree + 1);
-    FEValues<3>                      fe_values(*context.mapping,
+    const FiniteElement<3>              &fe = dof_handler.get_fe();
+    const QGaussSimplex<3>               quadrature(degree + 1);
+    FEValues<3>                          fe_values(*context.mapping,
                           fe,
                           quadrature,
                           update_values | update_JxW_values);
-    const FEValuesExtractors::Vector u(0);
-    const Tensor<1, 3>               b = interpolate(table, time) * force;
+    const FEValuesExtractors::Vector     u(0);
+    const Tensor<1, 3>                   b = interpolate(table, time) * force;
     Vector<double>                       cell_residual(fe.n_dofs_per_cell());
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())

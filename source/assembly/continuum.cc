@@ -2,10 +2,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/fe/fe_values.h>
-
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <densify/assembly/continuum.h>
 #include <densify/assembly/nodal_averaging.h>
@@ -31,9 +31,8 @@ namespace densify
       history = history || m->needs_history();
     if (history)
       {
-        per_cell = this->nodal_averaging ?
-                     4 :
-                     QGaussSimplex<3>(degree + 1).size();
+        per_cell =
+          this->nodal_averaging ? 4 : QGaussSimplex<3>(degree + 1).size();
         committed_history.assign(
           dof_handler.get_triangulation().n_active_cells() * per_cell,
           MaterialState());
@@ -61,7 +60,7 @@ namespace densify
                       TrilinosWrappers::MPI::Vector  &forces,
                       TrilinosWrappers::SparseMatrix *tangent)
   {
-    const TrilinosWrappers::MPI::Vector &solution = *context.solution;
+    const TrilinosWrappers::MPI::Vector &solution    = *context.solution;
     const bool                           with_matrix = tangent != nullptr;
     const FiniteElement<3>              &fe          = dof_handler.get_fe();
     const QGaussSimplex<3>               quadrature(degree + 1);

@@ -10,6 +10,8 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <densify/assembly/nodal_averaging.h>
+#include <densify/material/factory.h>
+#include <densify/material/j2_plasticity.h>
 
 #include <Epetra_CrsMatrix.h>
 

@@ -1,9 +1,9 @@
 // The stabilisation term of the Newton tangent.
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/fe/fe_values.h>
-
 #include <deal.II/lac/full_matrix.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <densify/assembly/stabilisation.h>
 

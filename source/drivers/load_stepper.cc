@@ -37,8 +37,8 @@ namespace densify
     const double travel = problem.set_loads(time, time - current_time);
     // predictor: extrapolate the last increment in proportion to the load's
     // travel
-    TrilinosWrappers::MPI::Vector &solution = problem.solution_vector();
-    const TrilinosWrappers::MPI::Vector start = solution;
+    TrilinosWrappers::MPI::Vector      &solution = problem.solution_vector();
+    const TrilinosWrappers::MPI::Vector start    = solution;
     if (last_travel > 0)
       solution.add(travel / last_travel, last_increment);
 
@@ -91,7 +91,8 @@ namespace densify
         const bool   last  = dt >= (time - current_time) * (1. - 1e-9);
         const double t_end = last ? time : current_time + dt;
         // what a failed increment must restore
-        const TrilinosWrappers::MPI::Vector saved_solution = problem.solution_vector();
+        const TrilinosWrappers::MPI::Vector saved_solution =
+          problem.solution_vector();
         const TrilinosWrappers::MPI::Vector saved_increment = last_increment;
         const double                        saved_travel    = last_travel;
         problem.save_state();
@@ -102,10 +103,10 @@ namespace densify
           }
         catch (const std::runtime_error &e)
           {
-            dt                 = t_end - current_time;
+            dt                        = t_end - current_time;
             problem.solution_vector() = saved_solution;
-            last_increment     = saved_increment;
-            last_travel        = saved_travel;
+            last_increment            = saved_increment;
+            last_travel               = saved_travel;
             problem.restore_state();
             // at most max_cutbacks halvings in a row, and never below
             // step_length / 2^max_cutbacks (a load that can only creep on in

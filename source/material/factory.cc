@@ -1,17 +1,48 @@
 // Creation of the material law of a particle from its material name.
 #include <densify/material/factory.h>
 #include <densify/material/j2_plasticity.h>
+#include <densify/material/presets.h>
 
 #include <limits>
 #include <stdexcept>
 
 namespace densify
 {
+  MaterialModel
+  parse_material_model(const std::string &model)
+  {
+    if (model == "elastic")
+      return MaterialModel::elastic;
+    if (model == "J2 plasticity")
+      return MaterialModel::j2_plasticity;
+    throw std::runtime_error("unknown Material/Model '" + model +
+                             "': use elastic or J2 plasticity");
+  }
+
+
+
+  Hardening
+  parse_hardening(const std::string &hardening)
+  {
+    if (hardening == "none")
+      return Hardening::none;
+    if (hardening == "linear")
+      return Hardening::linear;
+    if (hardening == "power law")
+      return Hardening::power_law;
+    throw std::runtime_error("unknown Material/Hardening '" + hardening +
+                             "': use none, linear or power law");
+  }
+
+
+
   std::shared_ptr<const Material>
   create_material(const std::string &name, const MaterialParameters &prm)
   {
     J2Parameters j2;
-    if (name == "custom")
+    if (const MaterialPreset *preset = find_material_preset(name))
+      j2 = material_preset(*preset); // the table in presets.cc
+    else if (name == custom_material_name)
       {
         j2.E       = prm.youngs_modulus;
         j2.nu      = prm.poissons_ratio;
@@ -20,39 +51,37 @@ namespace densify
         j2.label   = name;
       }
     else
-      try
-        {
-          // the presets (sources in doc/materials.md)
-          j2 = material_preset(name);
-        }
-      catch (const std::invalid_argument &)
-        {
-          throw std::runtime_error(
-            "unknown material '" + name +
-            "' (Particles/Materials or the particle file): use Sn, Fe, Cu or "
-            "custom");
-        }
+      throw std::runtime_error(
+        "unknown material '" + name +
+        "' (Particles/Materials or the particle file): use " +
+        material_names(" or "));
 
+    const MaterialModel model = parse_material_model(prm.model);
     if (!prm.finite_strain)
       {
-        if (prm.model != "elastic")
+        if (model != MaterialModel::elastic)
           throw std::runtime_error(
             "Material/Finite strain = false needs Material/Model = elastic: "
             "J2 plasticity is implemented at finite strain only");
         return std::make_shared<LinearElastic>(j2.E, j2.nu, name, j2.density);
       }
-    if (prm.model == "elastic")
+    if (model == MaterialModel::elastic)
       j2.sigma0 = std::numeric_limits<double>::infinity();
-    else if (prm.hardening == "linear")
+    else
       {
-        j2.hardening = Hardening::linear;
-        j2.H         = prm.hardening_modulus;
-      }
-    else if (prm.hardening == "power law")
-      {
-        j2.hardening = Hardening::power_law;
-        j2.K         = prm.hardening_coefficient;
-        j2.n         = prm.hardening_exponent;
+        j2.hardening = parse_hardening(prm.hardening);
+        switch (j2.hardening)
+          {
+            case Hardening::none:
+              break;
+            case Hardening::linear:
+              j2.H = prm.hardening_modulus;
+              break;
+            case Hardening::power_law:
+              j2.K = prm.hardening_coefficient;
+              j2.n = prm.hardening_exponent;
+              break;
+          }
       }
     try
       {

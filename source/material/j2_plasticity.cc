@@ -41,55 +41,30 @@ namespace densify
 
 
   J2Parameters
-  material_preset(const std::string &name)
+  material_preset(const MaterialPreset &preset)
   {
     J2Parameters p;
+    p.E         = preset.E;
+    p.nu        = preset.nu;
+    p.sigma0    = preset.sigma0;
+    p.density   = preset.density;
     p.hardening = Hardening::none;
-    p.label     = name;
-    if (name == "Sn")
-      {
-        // Tin as in the reference paper of the compaction benchmark.
-        p.E      = 43120.;
-        p.nu     = 0.3;
-        p.sigma0 = 31.;
-        // beta tin at room temperature, 7.29 g/cm^3 (CRC Handbook)
-        p.density = 7.29e-9;
-      }
-    else if (name == "Fe")
-      {
-        // Annealed high-purity iron. E and nu: room-temperature values of
-        // pure iron (ASM Handbook Vol. 2 / MatWeb "Iron, Fe": 211 GPa,
-        // 0.29). Yield stress: Callister, "Materials Science and
-        // Engineering" (Wiley), pure iron: sigma_y = 50 MPa (E = 208 GPa).
-        // Real yield stresses of pure iron depend strongly on purity and
-        // grain size.
-        p.E      = 211000.;
-        p.nu     = 0.29;
-        p.sigma0 = 50.;
-        // 7.874 g/cm^3 (CRC Handbook)
-        p.density = 7.874e-9;
-      }
-    else if (name == "Cu")
-      {
-        // Annealed high-purity (99.99 %) copper. E = 117 GPa: Smithells
-        // Metals Reference Book, 8th ed., Table 22.7 (annealed OFHC strip);
-        // nu = 0.34 (typical polycrystal value). Yield stress 33 MPa:
-        // MatWeb "Copper, Cu; Annealed" (33.3 MPa); Smithells lists a 0.2 %
-        // proof stress of 48 MPa for annealed OFHC strip, so the value
-        // depends on purity and grain size.
-        p.E      = 117000.;
-        p.nu     = 0.34;
-        p.sigma0 = 33.;
-        // 8.96 g/cm^3 (CRC Handbook)
-        p.density = 8.96e-9;
-      }
-    else if (name == "custom")
+    p.label     = preset.name;
+    return p;
+  }
+
+
+
+  J2Parameters
+  material_preset(const std::string &name)
+  {
+    if (const MaterialPreset *preset = find_material_preset(name))
+      return material_preset(*preset);
+    if (name == custom_material_name)
       throw std::invalid_argument(
         "material 'custom' has no preset: give E, nu and sigma0 explicitly");
-    else
-      throw std::invalid_argument("unknown material '" + name +
-                                  "': use one of Sn, Fe, Cu, custom");
-    return p;
+    throw std::invalid_argument("unknown material '" + name + "': use one of " +
+                                material_names());
   }
 
 
@@ -267,8 +242,8 @@ namespace densify
       throw std::domain_error("J2 plasticity: det F = " + std::to_string(J) +
                               " <= 0 (inverted element)");
 
-    static const MaterialState virgin;
-    const MaterialState       &old = committed ? *committed : virgin;
+    static const J2State virgin;
+    const J2State       &old = committed ? *committed : virgin;
 
     // Trial elastic left Cauchy-Green tensor be_tr = F Cp^{-1} F^T and its
     // spectral decomposition be_tr = sum_a x_a n_a (x) n_a.

@@ -340,11 +340,11 @@ namespace densify
 
 
   LinearSolver::LinearSolver(const LinearSolverType type,
-                             const double       tolerance,
-                             const unsigned int max_iterations,
-                             const bool         reuse_amg,
-                             const bool         reproducible,
-                             TimerOutput       &timer)
+                             const double           tolerance,
+                             const unsigned int     max_iterations,
+                             const bool             reuse_amg,
+                             const bool             reproducible,
+                             TimerOutput           &timer)
     : type(type)
     , tolerance(tolerance)
     , max_iterations(max_iterations)

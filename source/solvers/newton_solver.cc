@@ -28,7 +28,8 @@ namespace densify
 
     unsigned int linear_iterations = 0;
     problem.begin_solve();
-    NonlinearProblem::Evaluation current = problem.assemble(true, margin, false);
+    NonlinearProblem::Evaluation current =
+      problem.assemble(true, margin, false);
     if (problem.after_update() > 0)
       current = problem.assemble(true, margin, false);
     double line_search_step = 1.;
@@ -95,14 +96,14 @@ namespace densify
         // (regula falsi with the Illinois modification in a bracket of phi's
         // sign change). phi(0) = -du.K.du < 0 unless du is no descent
         // direction; then the residual search is used.
-        const double r0     = current.residual_norm;
-        const double s_max  = (max_step > limit ? limit / max_step : 1.);
-        const bool   energy = control.line_search == LineSearch::energy &&
-                            phi0 < 0;
-        double       s = s_max, s_applied = 0;
-        double       lo = 0, phi_lo = phi0, hi = s_max;
-        double       phi_hi = std::numeric_limits<double>::infinity();
-        int          kept   = 0; // Illinois: the bracket end moved last
+        const double r0    = current.residual_norm;
+        const double s_max = (max_step > limit ? limit / max_step : 1.);
+        const bool   energy =
+          control.line_search == LineSearch::energy && phi0 < 0;
+        double s = s_max, s_applied = 0;
+        double lo = 0, phi_lo = phi0, hi = s_max;
+        double phi_hi = std::numeric_limits<double>::infinity();
+        int    kept   = 0; // Illinois: the bracket end moved last
         NonlinearProblem::Evaluation trial;
         bool                         have_matrix = true;
         unsigned int                 n_trials    = 0;
@@ -189,17 +190,16 @@ namespace densify
         if (control.verbose && n_changed > 0)
           out << "      " << n_changed
               << " changes after the update need a new assembly" << std::endl;
-        current = (have_matrix && n_changed == 0) ?
-                    trial :
-                    problem.assemble(true, 0., false);
+        current          = (have_matrix && n_changed == 0) ?
+                             trial :
+                             problem.assemble(true, 0., false);
         first_trial_kept = n_trials == 1 && n_changed == 0;
         line_search_step = s;
       }
     std::ostringstream msg;
     msg << "step " << step << ": Newton did not converge in "
-        << control.max_iterations << " iterations (residual "
-        << std::scientific << std::setprecision(2) << current.residual_norm
-        << " N, target "
+        << control.max_iterations << " iterations (residual " << std::scientific
+        << std::setprecision(2) << current.residual_norm << " N, target "
         << std::max(tol * current.reference_norm, control.floor)
         << " N); try more steps (Time stepping/Number of steps) or raise "
            "Solver/Maximum Newton iterations";

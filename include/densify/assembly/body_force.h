@@ -21,10 +21,10 @@ namespace densify
   {
   public:
     /// @p force b_0, @p table the factor f against time (s).
-    BodyForce(const DoFHandler<3>                           &dof_handler,
-              const Tensor<1, 3>                            &force,
+    BodyForce(const DoFHandler<3>                          &dof_handler,
+              const Tensor<1, 3>                           &force,
               const std::vector<std::pair<double, double>> &table,
-              const unsigned int                             degree);
+              const unsigned int                            degree);
 
     std::string
     name() const override

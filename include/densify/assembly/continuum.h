@@ -8,6 +8,7 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <densify/assembly/force_term.h>
+#include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
 
 #include <memory>

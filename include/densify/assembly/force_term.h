@@ -2,11 +2,11 @@
 // of the multi-body system.
 #pragma once
 
-#include <deal.II/fe/mapping.h>
-
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/fe/mapping.h>
 
 #include <string>
 
@@ -60,8 +60,8 @@ namespace densify
      * others leave it to the caller.
      */
     virtual void
-    assemble(const AssemblyContext         &context,
-             TrilinosWrappers::MPI::Vector &residual,
+    assemble(const AssemblyContext          &context,
+             TrilinosWrappers::MPI::Vector  &residual,
              TrilinosWrappers::SparseMatrix *tangent) = 0;
 
     /// Add a fixed matrix to the compressed tangent (terms whose tangent

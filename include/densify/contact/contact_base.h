@@ -155,8 +155,8 @@ namespace densify
       if (relaxation > 0.)
         out.new_lambda = &pressure;
       std::vector<Tensor<1, 3>> new_traction(committed_traction.size());
-      std::vector<double>       new_slip    = accumulated_slip;
-      const bool                friction    = friction_on();
+      std::vector<double>       new_slip = accumulated_slip;
+      const bool                friction = friction_on();
       if (friction)
         {
           out.new_traction = &new_traction;
@@ -214,16 +214,15 @@ namespace densify
              TrilinosWrappers::MPI::Vector  &residual,
              TrilinosWrappers::SparseMatrix *tangent) override
     {
-      last = context.explicit_dynamics ?
-               assemble_and_commit(*context.mapping,
-                                   *context.solution,
-                                   residual,
-                                   relaxation) :
-               assemble(*context.mapping,
-                        *context.solution,
-                        residual,
-                        tangent,
-                        context.tangent_margin);
+      last = context.explicit_dynamics ? assemble_and_commit(*context.mapping,
+                                                             *context.solution,
+                                                             residual,
+                                                             relaxation) :
+                                         assemble(*context.mapping,
+                                                  *context.solution,
+                                                  residual,
+                                                  tangent,
+                                                  context.tangent_margin);
     }
 
     void

@@ -258,12 +258,12 @@ namespace densify
     /// barycentric coordinates (update_projections()).
     static constexpr double projection_band = 0.1;
 
-    const DoFHandler<3>                 *dof_handler        = nullptr;
-    std::vector<double>                  penalty;
-    FrictionLaw                          friction;
-    Quadrature<2>                        face_quadrature;
-    unsigned int                         n_particles       = 0;
-    bool                                 geometric_tangent = false;
+    const DoFHandler<3> *dof_handler = nullptr;
+    std::vector<double>  penalty;
+    FrictionLaw          friction;
+    Quadrature<2>        face_quadrature;
+    unsigned int         n_particles       = 0;
+    bool                 geometric_tangent = false;
 
     /// All surface facets, by particle (facets_of[p] ranges over facets).
     std::vector<Facet>        facets;

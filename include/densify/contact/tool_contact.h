@@ -196,10 +196,10 @@ namespace densify
     /// What one pass over the contact points writes besides the forces.
     struct Outputs : ContactOutputs
     {
-      const DoFHandler<3>            *post           = nullptr;
-      SurfaceFieldSums               *sums           = nullptr;
-      std::vector<double>            *particle_force = nullptr;
-      ToolKind                        force_kind     = ToolKind::die_wall;
+      const DoFHandler<3> *post           = nullptr;
+      SurfaceFieldSums    *sums           = nullptr;
+      std::vector<double> *particle_force = nullptr;
+      ToolKind             force_kind     = ToolKind::die_wall;
     };
 
     /// One pass over all contact quadrature points; the core of the class.
@@ -208,14 +208,14 @@ namespace densify
          const TrilinosWrappers::MPI::Vector &solution,
          const Outputs                       &out) const;
 
-    const DoFHandler<3>                 *dof_handler        = nullptr;
-    std::vector<RigidTool>               tool_list;
-    std::vector<FrictionLaw>             friction_laws;
-    std::vector<Tensor<1, 3>>            shift, committed_shift;
-    std::vector<double>                  penalty;
-    Quadrature<2>                        face_quadrature;
+    const DoFHandler<3>      *dof_handler = nullptr;
+    std::vector<RigidTool>    tool_list;
+    std::vector<FrictionLaw>  friction_laws;
+    std::vector<Tensor<1, 3>> shift, committed_shift;
+    std::vector<double>       penalty;
+    Quadrature<2>             face_quadrature;
     std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
-                              faces;
+      faces;
   };
 
   /**

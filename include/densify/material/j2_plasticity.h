@@ -4,12 +4,33 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <densify/material/material.h>
+#include <densify/material/presets.h>
 
 #include <cmath>
 #include <string>
 
 namespace densify
 {
+  /**
+   * State of J2Plasticity at one quadrature point, kept between load steps
+   * (the MaterialState of the history).
+   */
+  struct J2State
+  {
+    /// Inverse plastic right Cauchy-Green tensor C_p^{-1} (identity at start).
+    Tensor<2, 3> Cp_inv = unit_symmetric_tensor<3>();
+    /// Accumulated equivalent plastic strain (dimensionless).
+    double eps_p = 0.;
+
+    /// Write or read the state with a boost archive (checkpoints).
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int /*version*/)
+    {
+      archive &Cp_inv &eps_p;
+    }
+  };
+
   /// Isotropic hardening law of J2Plasticity.
   enum class Hardening
   {
@@ -47,9 +68,14 @@ namespace densify
     std::string label;
   };
 
+  /// Parameters of the preset @p preset: its constants, no hardening, its
+  /// name as the label.
+  J2Parameters
+  material_preset(const MaterialPreset &preset);
+
   /**
-   * Parameters of a named material: "Sn", "Fe" or "Cu" (all perfectly
-   * plastic, see the source for values and references). Throws
+   * Parameters of the preset named @p name (the table in
+   * source/material/presets.cc: "Sn", "Fe", "Cu"). Throws
    * std::invalid_argument for any other name (including "custom", whose
    * parameters the caller must give explicitly).
    */
@@ -92,9 +118,8 @@ namespace densify
     std::string
     name() const override;
 
-    /// Always true: the law keeps Cp^{-1} and eps_p.
     /// True unless the yield stress is infinite (then the law is Hencky
-    /// hyperelasticity and needs no history).
+    /// hyperelasticity and needs no history): the law keeps a J2State.
     bool
     needs_history() const override
     {
@@ -168,6 +193,13 @@ namespace densify
     /// The integral of sigma_y from 0 to the state's eps_p (MPa).
     double
     plastic_work(const MaterialState &state) const override;
+
+    /// The state's eps_p.
+    double
+    equivalent_plastic_strain(const MaterialState &state) const override
+    {
+      return state.eps_p;
+    }
 
     /// The parameters this law was constructed with.
     const J2Parameters &

@@ -12,26 +12,17 @@ namespace densify
 {
   using namespace dealii;
 
+  struct J2State;
+
   /**
    * State kept at one quadrature point between load steps. Only materials
    * whose needs_history() returns true get one; an elastic scene allocates
-   * none.
+   * none. The one law with history is J2Plasticity, so the state is its
+   * J2State (include/densify/material/j2_plasticity.h, which code that
+   * stores or copies states includes). Code outside the law reads a state
+   * through the law: plastic_work(), equivalent_plastic_strain().
    */
-  struct MaterialState
-  {
-    /// Inverse plastic right Cauchy-Green tensor C_p^{-1} (identity at start).
-    Tensor<2, 3> Cp_inv = unit_symmetric_tensor<3>();
-    /// Accumulated equivalent plastic strain (dimensionless).
-    double eps_p = 0.;
-
-    /// Write or read the state with a boost archive (checkpoints).
-    template <class Archive>
-    void
-    serialize(Archive &archive, const unsigned int /*version*/)
-    {
-      archive &Cp_inv &eps_p;
-    }
-  };
+  using MaterialState = J2State;
 
   /**
    * A constitutive law in total-Lagrangian form: given the deformation
@@ -135,6 +126,14 @@ namespace densify
     /// @p state (MPa = mJ/mm^3); 0 for laws without plasticity.
     virtual double
     plastic_work(const MaterialState & /*state*/) const
+    {
+      return 0.;
+    }
+
+    /// Accumulated equivalent plastic strain of the state @p state
+    /// (dimensionless); 0 for laws without plasticity.
+    virtual double
+    equivalent_plastic_strain(const MaterialState & /*state*/) const
     {
       return 0.;
     }

@@ -144,15 +144,15 @@ namespace densify
     setup_amg(const TrilinosWrappers::SparseMatrix &matrix);
 
     const LinearSolverType type;
-    const double       tolerance;
-    const unsigned int max_iterations;
-    const bool         reuse_amg;
-    const bool         reproducible;
-    TimerOutput       &timer;
-    unsigned int       iterations_after_setup = 0;
-    unsigned int       last_iterations        = 0;
-    unsigned int       n_setups               = 0;
-    unsigned int       n_gmres                = 0;
+    const double           tolerance;
+    const unsigned int     max_iterations;
+    const bool             reuse_amg;
+    const bool             reproducible;
+    TimerOutput           &timer;
+    unsigned int           iterations_after_setup = 0;
+    unsigned int           last_iterations        = 0;
+    unsigned int           n_setups               = 0;
+    unsigned int           n_gmres                = 0;
     /// Column-major: mode k of local row i at [k * n_local + i].
     std::vector<double>                                null_space;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;

@@ -140,7 +140,7 @@ namespace densify
      * does not converge or the residual becomes NaN.
      */
     std::pair<unsigned int, unsigned int>
-    solve(NonlinearProblem &problem,
+    solve(NonlinearProblem  &problem,
           const unsigned int step,
           const double       margin);
 

@@ -1,0 +1,311 @@
+// The Newton solver and the load stepper on a toy problem without a scene: a
+// chain of n nonlinear springs (stiffness k (1 + c s^2) for a stretch s),
+// fixed at its left end and pulled at its right end by a force f(t) = F t,
+// with a rigid stop that the last node touches through an
+// augmented-Lagrangian penalty. Checked against the exact solution:
+// - Newton (residual and energy line search, with and without the step
+//   limiter) converges to the spring chain's equilibrium, quadratically;
+// - too few iterations throw, naming the step;
+// - the load stepper reaches the end load through a cut-back after a failed
+//   increment, and its augmentations bring the penetration of the stop
+//   below the tolerance, with the stop's force equal to F - k (1 + c s^2) s.
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <densify/drivers/load_stepper.h>
+#include <densify/solvers/newton_solver.h>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+
+namespace
+{
+  using namespace dealii;
+  using namespace densify;
+
+  /// The spring force of a stretch s.
+  double
+  spring(const double s, const double k, const double c)
+  {
+    return k * (1. + c * s * s) * s;
+  }
+
+  /// The spring chain with a stop at x = gap for the last node.
+  class SpringChain : public IncrementalProblem
+  {
+  public:
+    SpringChain(const unsigned int n, const double gap)
+      : n(n)
+      , gap(gap)
+      , owned(complete_index_set(n))
+    {
+      u.reinit(owned, MPI_COMM_WORLD);
+      r.reinit(owned, MPI_COMM_WORLD);
+      TrilinosWrappers::SparsityPattern sp(owned, MPI_COMM_WORLD);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = (i > 0 ? i - 1 : 0); j < std::min(n, i + 2); ++j)
+          sp.add(i, j);
+      sp.compress();
+      K.reinit(sp);
+    }
+
+    /// Scale of the springs' nonlinearity, and the force F at t = 1.
+    const double k = 100., c = 50., F_max = 300.;
+    /// Penalty of the stop, its multiplier, and failures to simulate.
+    double       eps = 1e5, lambda = 0., saved_lambda = 0.;
+    unsigned int fail_above_increment = 0;
+    double       increment            = 0.;
+
+    Evaluation
+    assemble(const bool with_tangent,
+             const double /*tangent_margin*/,
+             const bool /*search*/) override
+    {
+      if (fail_above_increment > 0 && increment > 0.2)
+        {
+          --fail_above_increment;
+          throw std::runtime_error("simulated failure of a long increment");
+        }
+      r = 0;
+      if (with_tangent)
+        K = 0;
+      // springs: node i-1 (or the wall) to node i
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double left = (i > 0 ? u[i - 1] : 0.);
+          const double s    = u[i] - left;
+          const double f    = spring(s, k, c);
+          const double dk   = k * (1. + 3. * c * s * s);
+          r[i] += f;
+          if (i > 0)
+            r[i - 1] -= f;
+          if (with_tangent)
+            {
+              K.add(i, i, dk);
+              if (i > 0)
+                {
+                  K.add(i - 1, i - 1, dk);
+                  K.add(i, i - 1, -dk);
+                  K.add(i - 1, i, -dk);
+                }
+            }
+        }
+      // the pulling force and the stop: p = max(0, lambda + eps (u - gap))
+      r[n - 1] -= F_max * time;
+      const double p = std::max(0., lambda + eps * (u[n - 1] - gap));
+      r[n - 1] += p;
+      if (with_tangent && p > 0)
+        K.add(n - 1, n - 1, eps);
+      r.compress(VectorOperation::insert);
+      if (with_tangent)
+        K.compress(VectorOperation::add);
+      Evaluation e;
+      e.residual_norm  = r.l2_norm();
+      e.reference_norm = F_max * std::max(time, 1e-3);
+      e.description    = "stop force " + std::to_string(p);
+      return e;
+    }
+
+    TrilinosWrappers::MPI::Vector &
+    solution_vector() override
+    {
+      return u;
+    }
+
+    TrilinosWrappers::MPI::Vector &
+    residual_vector() override
+    {
+      return r;
+    }
+
+    unsigned int
+    solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
+                 TrilinosWrappers::MPI::Vector       &du,
+                 const double /*relative_tolerance*/) override
+    {
+      SolverControl                  control(1, 0);
+      TrilinosWrappers::SolverDirect direct(control);
+      direct.solve(K, du, rhs);
+      return 1;
+    }
+
+    double
+    set_loads(const double t, const double dt) override
+    {
+      time      = t;
+      increment = dt;
+      return F_max * dt / k;
+    }
+
+    double
+    evaluate_constraints() override
+    {
+      return std::max(0., u[n - 1] - gap);
+    }
+
+    void
+    update_multipliers() override
+    {
+      lambda = std::max(0., lambda + eps * (u[n - 1] - gap));
+    }
+
+    void
+    save_state() override
+    {
+      saved_lambda = lambda;
+    }
+
+    void
+    restore_state() override
+    {
+      lambda = saved_lambda;
+    }
+
+    void
+    commit() override
+    {
+      ++commits;
+    }
+
+    const unsigned int             n;
+    const double                   gap;
+    double                         time    = 0.;
+    unsigned int                   commits = 0;
+    IndexSet                       owned;
+    TrilinosWrappers::MPI::Vector  u, r;
+    TrilinosWrappers::SparseMatrix K;
+  };
+
+  /// The exact free chain: every spring carries the force f, s solves
+  /// k (1 + c s^2) s = f (Newton on the scalar equation).
+  double
+  exact_stretch(const double f, const double k, const double c)
+  {
+    double s = 0.;
+    for (unsigned int i = 0; i < 100; ++i)
+      s -= (spring(s, k, c) - f) / (k * (1. + 3. * c * s * s));
+    return s;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ConditionalOStream               silent(std::cout, false);
+  std::cout << std::boolalpha;
+
+  // Newton alone at the full load, no stop in reach
+  for (const LineSearch search : {LineSearch::residual, LineSearch::energy})
+    for (const double limit : {1e10, 0.5})
+      {
+        SpringChain chain(8, 1e10);
+        chain.set_loads(1., 1.);
+        NewtonControl control;
+        control.tolerance      = 1e-12;
+        control.line_search    = search;
+        control.step_limit     = limit;
+        control.max_iterations = 50;
+        NewtonSolver newton(control, silent);
+        const auto [iterations, linear] = newton.solve(chain, 1, 0.);
+        const double s     = exact_stretch(chain.F_max, chain.k, chain.c);
+        double       error = 0.;
+        for (unsigned int i = 0; i < chain.n; ++i)
+          error = std::max(error, std::abs(chain.u[i] - (i + 1) * s));
+        // quadratic convergence at the end: once the residual is below
+        // 1e-3 of the first, the next one is at most 10 times its square
+        // (relative to the first), or at round-off
+        const std::vector<double> &h         = newton.residuals();
+        const double               r0        = h.front();
+        bool                       quadratic = false;
+        for (unsigned int k = 0; k + 1 < h.size(); ++k)
+          if (h[k] / r0 < 1e-3)
+            {
+              quadratic =
+                h[k + 1] / r0 < std::max(10. * std::pow(h[k] / r0, 2), 1e-13);
+              break;
+            }
+        std::cout << (search == LineSearch::energy ? "energy" : "residual")
+                  << " line search, step limit " << limit
+                  << ": converged to the exact chain (error < 1e-10 mm): "
+                  << (error < 1e-10) << ", quadratic at the end: " << quadratic
+                  << ", linear solves = iterations: " << (linear == iterations)
+                  << ", limited takes more iterations: "
+                  << (limit < 1 ? iterations > 5 : true) << std::endl;
+      }
+
+  // too few iterations: an error naming the step
+  {
+    SpringChain chain(8, 1e10);
+    chain.set_loads(1., 1.);
+    NewtonControl control;
+    control.tolerance      = 1e-12;
+    control.max_iterations = 2;
+    NewtonSolver newton(control, silent);
+    bool         thrown = false;
+    try
+      {
+        newton.solve(chain, 7, 0.);
+      }
+    catch (const std::runtime_error &e)
+      {
+        thrown = std::string(e.what()).find("step 7: Newton did not "
+                                            "converge in 2 iterations") == 0;
+      }
+    std::cout << "two iterations: throws, naming the step: " << thrown
+              << std::endl;
+  }
+
+  // the load stepper: four steps, the stop reached in the third; the first
+  // increment of the step after the first fails twice and is cut back
+  {
+    // the free chain's end would reach 3.0 mm at F_max: the stop engages in
+    // the first step
+    const double  gap = 1.1;
+    SpringChain   chain(8, gap);
+    NewtonControl control;
+    control.tolerance = 1e-12;
+    NewtonSolver       newton(control, silent);
+    LoadStepperControl steps;
+    steps.step_length   = 0.25;
+    steps.gap_tolerance = 1e-8;
+    LoadStepper stepper(steps, newton, silent);
+    stepper.setup(chain.u);
+    double     t = 0.;
+    StepCounts counts;
+    chain.fail_above_increment = 0;
+    for (unsigned int step = 1; step <= 4; ++step)
+      {
+        // a long increment fails once in the second step
+        chain.fail_above_increment = (step == 2 ? 1 : 0);
+        chain.increment            = 0.;
+        stepper.advance_to(chain, t, 0.25 * step, step, counts);
+      }
+    // at the end the stop holds the last node at the gap: the springs carry
+    // the force of a uniform stretch gap / n, the stop the rest
+    const double s          = gap / chain.n;
+    const double stop_force = chain.F_max - spring(s, chain.k, chain.c);
+    std::cout
+      << "load stepper: end time reached: " << (std::abs(t - 1.) < 1e-14)
+      << ", cut back after the failure: " << (counts.cutbacks == 1)
+      << ", increments " << counts.increments << " (commits " << chain.commits
+      << ")"
+      << ", augmentations made: " << (counts.augmentations > 0) << std::endl
+      << "penetration below the tolerance: "
+      << (chain.u[chain.n - 1] - gap < 1e-8)
+      << ", stop force = F - spring force (within 1e-6 of F): "
+      << (std::abs(
+            std::max(0.,
+                     chain.lambda + chain.eps * (chain.u[chain.n - 1] - gap)) -
+            stop_force) < 1e-6 * chain.F_max)
+      << std::endl;
+  }
+  return 0;
+}
