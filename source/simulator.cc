@@ -12,18 +12,16 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_values.h>
 
-#include <deal.II/numerics/data_out.h>
-
 #include <densify/assembly/nodal_averaging.h>
 #include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
+#include <densify/postprocess/run_log.h>
 #include <densify/scene.h>
 #include <densify/simulator.h>
 #include <densify/utilities.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -47,138 +45,6 @@ namespace densify
                                                    Point<2>(0, 1)},
                              std::vector<double>(3, 1. / 6.));
       return QGaussSimplex<2>(degree + 1);
-    }
-
-
-
-    /// The symmetric four-point rule of a tetrahedron (exact for quadratics):
-    /// point k lies nearest corner k and carries a quarter of the volume, as
-    /// the corners of the nodal-averaged F-bar do in the residual.
-    Quadrature<3>
-    corner_quadrature()
-    {
-      const double a = (5. + 3. * std::sqrt(5.)) / 20.;
-      const double b = (5. - std::sqrt(5.)) / 20.;
-      return Quadrature<3>(std::vector<Point<3>>{Point<3>(b, b, b),
-                                                 Point<3>(a, b, b),
-                                                 Point<3>(b, a, b),
-                                                 Point<3>(b, b, a)},
-                           std::vector<double>(4, 1. / 24.));
-    }
-
-
-
-    /// A stream buffer writing to two others (console and log file).
-    class TeeBuffer : public std::streambuf
-    {
-    public:
-      TeeBuffer(std::streambuf *a, std::streambuf *b)
-        : a(a)
-        , b(b)
-      {}
-
-    protected:
-      int
-      overflow(int c) override
-      {
-        if (c == EOF)
-          return !EOF;
-        const int ra = (a != nullptr ? a->sputc(c) : c);
-        const int rb = (b != nullptr ? b->sputc(c) : c);
-        return (ra == EOF || rb == EOF) ? EOF : c;
-      }
-      int
-      sync() override
-      {
-        const int ra = (a != nullptr ? a->pubsync() : 0);
-        const int rb = (b != nullptr ? b->pubsync() : 0);
-        return (ra == 0 && rb == 0) ? 0 : -1;
-      }
-
-    private:
-      std::streambuf *a, *b;
-    };
-
-    /// An ostream owning its TeeBuffer.
-    class TeeStream : public std::ostream
-    {
-    public:
-      TeeStream(std::ostream *a, std::ostream *b)
-        : std::ostream(nullptr)
-        , buffer(a != nullptr ? a->rdbuf() : nullptr,
-                 b != nullptr ? b->rdbuf() : nullptr)
-      {
-        rdbuf(&buffer);
-      }
-
-    private:
-      TeeBuffer buffer;
-    };
-
-    /// Format seconds as "1h02m", "3m05s" or "4.2s".
-    std::string
-    format_seconds(const double s)
-    {
-      std::ostringstream out;
-      if (s >= 3600)
-        out << int(s / 3600) << "h" << std::setw(2) << std::setfill('0')
-            << int(std::fmod(s, 3600) / 60) << "m";
-      else if (s >= 60)
-        out << int(s / 60) << "m" << std::setw(2) << std::setfill('0')
-            << int(std::fmod(s, 60)) << "s";
-      else
-        out << std::fixed << std::setprecision(1) << s << "s";
-      return out.str();
-    }
-
-    /// Create the output directory (rank 0) and open its log.txt; a fresh
-    /// run (not @p append) removes the checkpoint of an earlier run there,
-    /// which --resume would otherwise take for its own. Every rank throws if
-    /// rank 0 fails.
-    std::ofstream
-    open_log(const std::string &directory,
-             const MPI_Comm     comm,
-             const bool         append)
-    {
-      std::ofstream log;
-      std::string   error;
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          namespace fs = std::filesystem;
-          std::error_code ignored;
-          fs::create_directories(directory, ignored);
-          errno = 0;
-          log.open(directory + "/log.txt",
-                   append ? std::ios::app : std::ios::trunc);
-          if (!log)
-            error = "Output/Directory: " + write_error(directory + "/log.txt");
-          else if (!append)
-            for (const char *name :
-                 {"checkpoint", "checkpoint.old", "checkpoint.new"})
-              {
-                std::error_code removed;
-                fs::remove_all(fs::path(directory) / name, removed);
-                if (removed)
-                  error = "Output/Directory: cannot remove the earlier "
-                          "run's '" +
-                          (fs::path(directory) / name).string() + "' (" +
-                          removed.message() + ")";
-              }
-        }
-      error = first_error(error, comm);
-      if (!error.empty())
-        throw InputError(error);
-      return log;
-    }
-
-    /// Von Mises stress of the Cauchy stress belonging to P and F (MPa).
-    double
-    von_mises(const Tensor<2, 3> &P, const Tensor<2, 3> &F)
-    {
-      const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
-      const Tensor<2, 3> s =
-        sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
-      return std::sqrt(1.5 * scalar_product(s, s));
     }
   } // namespace
 
@@ -673,83 +539,20 @@ namespace densify
 
 
 
-  std::vector<Simulator::ParticleMeasure>
+  std::vector<ParticleMeasure>
   Simulator::measure_particles() const
   {
-    const QGaussSimplex<3>           quadrature(prm.mesh.degree + 1);
-    FEValues<3>                      fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
-    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
-    TrilinosWrappers::MPI::Vector    ghosted(locally_owned,
+    TrilinosWrappers::MPI::Vector ghosted(locally_owned,
                                           locally_relevant,
                                           comm);
     ghosted = solution;
-    // per particle, with r = X - centre: [0] current volume, [1] reference
-    // volume, [2..4] int u, [5..7] int r x u, [8..10] int r, [11..19] the
-    // inertia tensor int (|r|^2 I - r r)
-    constexpr unsigned int n = 20;
-    std::vector<double>    sums(n * particles.size(), 0.);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[u].get_function_values(ghosted, u_q);
-          fe_values[u].get_function_gradients(ghosted, grad_u);
-          const unsigned int p      = cell->material_id();
-          double            *sum    = &sums[n * p];
-          const bool         finite = particle_material[p]->finite_strain();
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const double JxW = fe_values.JxW(q);
-              // volume as the kinematics of the particle's law sees it
-              // (det F is not rotation-free for linearised rotations)
-              sum[0] +=
-                (finite ? determinant(unit_symmetric_tensor<3>() + grad_u[q]) :
-                          1. + trace(grad_u[q])) *
-                JxW;
-              sum[1] += JxW;
-              const Tensor<1, 3> r =
-                fe_values.quadrature_point(q) - particles[p].centre;
-              const Tensor<1, 3> r_x_u = cross_product_3d(r, u_q[q]);
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  sum[2 + d] += u_q[q][d] * JxW;
-                  sum[5 + d] += r_x_u[d] * JxW;
-                  sum[8 + d] += r[d] * JxW;
-                  for (unsigned int e = 0; e < 3; ++e)
-                    sum[11 + 3 * d + e] +=
-                      ((d == e ? r * r : 0.) - r[d] * r[e]) * JxW;
-                }
-            }
-        }
-    Utilities::MPI::sum(sums, comm, sums);
-    std::vector<ParticleMeasure> measures(particles.size());
-    for (unsigned int p = 0; p < particles.size(); ++p)
-      {
-        const double *sum  = &sums[n * p];
-        measures[p].volume = sum[0];
-        Tensor<1, 3> mean, moment, first;
-        Tensor<2, 3> inertia;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            mean[d]   = sum[2 + d] / sum[1];
-            moment[d] = sum[5 + d];
-            first[d]  = sum[8 + d];
-            for (unsigned int e = 0; e < 3; ++e)
-              inertia[d][e] = sum[11 + 3 * d + e];
-          }
-        measures[p].mean_displacement = mean;
-        // rigid rotation u = w x r gives int r x u = I w; the translation
-        // part is taken out first
-        measures[p].rotation =
-          invert(inertia) * (moment - cross_product_3d(first, mean));
-      }
-    return measures;
+    return densify::measure_particles(dof_handler,
+                                      *mapping,
+                                      prm.mesh.degree,
+                                      ghosted,
+                                      particles,
+                                      particle_material,
+                                      comm);
   }
 
 
@@ -871,270 +674,21 @@ namespace densify
   {
     TimerOutput::Scope t(timer, "Output: graphics");
     update_ghosts();
-    const NodalAveraging             *nodal_averaging = continuum->fbar();
-    const bool                        has_history = continuum->has_history();
-    const std::vector<MaterialState> &committed_history =
-      continuum->committed();
-    const unsigned int history_per_cell = continuum->states_per_cell();
-
-    // scalar P1 fields: lumped L2 projections and nodal gaps
-    const FE_SimplexP<3> post_fe(1);
-    DoFHandler<3>        post_dof_handler(triangulation);
-    post_dof_handler.distribute_dofs(post_fe);
-    const IndexSet post_owned = post_dof_handler.locally_owned_dofs();
-    IndexSet       post_relevant;
-    DoFTools::extract_locally_relevant_dofs(post_dof_handler, post_relevant);
-    TrilinosWrappers::MPI::Vector pr_w(post_owned, comm),
-      ep_w(post_owned, comm);
-    TrilinosWrappers::MPI::Vector vm_w(post_owned, comm),
-      vm_m(post_owned, comm), gap(post_owned, comm);
-    SurfaceFieldSums surface;
-    for (auto *v :
-         {&surface.pressure, &surface.slip, &surface.status, &surface.weights})
-      v->reinit(post_owned, comm);
-
-    // With the nodal-averaged F-bar, Fbar and the history live at a cell's
-    // four corners, which carry V/4 each in the residual: one point nearest
-    // each corner with that weight. (deal.II 9.4's QGaussSimplex<3>(2) has
-    // six points of unequal weight; their nearest corners carried 0.90 to
-    // 1.07 times V/4, which biased the projected fields: the pressure
-    // integral of tests/cli/plastic_field.sh by -4.7 %.) Otherwise the
-    // history is per point of the assembly's rule.
-    const Quadrature<3> quadrature =
-      nodal_averaging ? corner_quadrature() :
-                        Quadrature<3>(QGaussSimplex<3>(prm.mesh.degree + 1));
-    FEValues<3>                          fe_values(*mapping,
-                          *fe,
-                          quadrature,
-                          update_gradients | update_JxW_values);
-    FEValues<3>                          post_values(*mapping,
-                            post_fe,
-                            quadrature,
-                            update_values | update_JxW_values);
-    const FEValuesExtractors::Vector     u(0);
-    std::vector<Tensor<2, 3>>            grad_u(quadrature.size());
-    std::vector<types::global_dof_index> post_dofs(post_fe.n_dofs_per_cell());
-    Vector<double> cell_w(post_dofs.size()), cell_m(post_dofs.size()),
-      cell_p(post_dofs.size()), cell_e(post_dofs.size());
-    Tensor<2, 3> P;
-    Tensor<4, 3> A;
-    // the reference-cell corner of largest barycentric weight at each point
-    std::vector<unsigned int> nearest_corner(quadrature.size());
-    for (unsigned int q = 0; q < quadrature.size(); ++q)
-      {
-        const Point<3>             &x = quadrature.point(q);
-        const std::array<double, 4> weight{
-          {1. - x[0] - x[1] - x[2], x[0], x[1], x[2]}};
-        nearest_corner[q] =
-          std::max_element(weight.begin(), weight.end()) - weight.begin();
-      }
-    const std::vector<double> j_bar =
-      nodal_averaging ?
-        nodal_averaging->vertex_volume_measures(solution_ghosted,
-                                                particle_material) :
-        std::vector<double>();
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const typename DoFHandler<3>::active_cell_iterator post_cell(
-            &triangulation, cell->level(), cell->index(), &post_dof_handler);
-          fe_values.reinit(cell);
-          post_values.reinit(post_cell);
-          fe_values[u].get_function_gradients(solution_ghosted, grad_u);
-          cell_w = 0;
-          cell_m = 0;
-          cell_p = 0;
-          cell_e = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-              // with the nodal-averaged F-bar the history is kept at the
-              // corners: take the corner nearest to the point, and the
-              // material's Fbar there (F alone would give the cell's own,
-              // locking volume change to the pressure)
-              const Material &material =
-                *particle_material[cell->material_id()];
-              if (nodal_averaging)
-                {
-                  const double j_a =
-                    j_bar[cell->vertex_index(nearest_corner[q])];
-                  if (material.finite_strain())
-                    F *= std::cbrt(j_a / determinant(F));
-                  else
-                    F += (j_a - (trace(F) - 2.)) / 3. *
-                         Tensor<2, 3>(unit_symmetric_tensor<3>());
-                }
-              const unsigned int k =
-                cell->active_cell_index() * history_per_cell +
-                (nodal_averaging ? nearest_corner[q] : q);
-              MaterialState scratch;
-              material.evaluate(F,
-                                has_history ? &committed_history[k] : nullptr,
-                                has_history ? &scratch : nullptr,
-                                P,
-                                A);
-              const double       vm    = von_mises(P, F);
-              const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
-              const double       eps_p =
-                has_history ?
-                        material.equivalent_plastic_strain(committed_history[k]) :
-                        0.;
-              for (unsigned int i = 0; i < post_dofs.size(); ++i)
-                {
-                  const double v =
-                    post_values.shape_value(i, q) * post_values.JxW(q);
-                  cell_w(i) += v * vm;
-                  cell_m(i) += v;
-                  cell_p(i) += v * (-trace(sigma) / 3.);
-                  cell_e(i) += v * eps_p;
-                }
-            }
-          post_cell->get_dof_indices(post_dofs);
-          vm_w.add(post_dofs, cell_w);
-          vm_m.add(post_dofs, cell_m);
-          pr_w.add(post_dofs, cell_p);
-          ep_w.add(post_dofs, cell_e);
-          // signed gap to the nearest tool at each vertex
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const types::global_dof_index i =
-                post_cell->vertex_dof_index(v, 0);
-              if (!post_owned.is_element(i))
-                continue;
-              Point<3> x = cell->vertex(v);
-              for (unsigned int d = 0; d < 3; ++d)
-                x[d] += solution_ghosted(cell->vertex_dof_index(v, d));
-              double g = std::numeric_limits<double>::max();
-              for (const RigidTool &tool : tool_contact ?
-                                             tool_contact->tools() :
-                                             std::vector<RigidTool>())
-                {
-                  Tensor<1, 3> n;
-                  double       c;
-                  g = std::min(g, tool.gap(x, n, c));
-                }
-              gap(i) = (tool_contact ? g : 0.);
-            }
-        }
-    if (tool_contact)
-      tool_contact->project_fields(*mapping,
-                                   solution_ghosted,
-                                   post_dof_handler,
-                                   surface);
-    if (particle_contact)
-      particle_contact->project_fields(*mapping,
-                                       solution_ghosted,
-                                       post_dof_handler,
-                                       surface);
-    for (auto *v : {&vm_w,
-                    &vm_m,
-                    &surface.pressure,
-                    &surface.slip,
-                    &surface.status,
-                    &surface.weights,
-                    &pr_w,
-                    &ep_w})
-      v->compress(VectorOperation::add);
-    gap.compress(VectorOperation::insert);
-    for (const auto i : post_owned)
-      {
-        pr_w(i)        = (vm_m(i) > 0 ? pr_w(i) / vm_m(i) : 0.);
-        ep_w(i)        = (vm_m(i) > 0 ? ep_w(i) / vm_m(i) : 0.);
-        vm_w(i)        = (vm_m(i) > 0 ? vm_w(i) / vm_m(i) : 0.);
-        const double w = surface.weights(i);
-        for (auto *v : {&surface.pressure, &surface.slip, &surface.status})
-          (*v)(i) = (w > 0 ? (*v)(i) / w : 0.);
-      }
-    vm_w.compress(VectorOperation::insert);
-    for (auto *v : {&surface.pressure, &surface.slip, &surface.status})
-      v->compress(VectorOperation::insert);
-    pr_w.compress(VectorOperation::insert);
-    ep_w.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector vm_g(post_owned, post_relevant, comm),
-      p_g(post_owned, post_relevant, comm),
-      gap_g(post_owned, post_relevant, comm),
-      pr_g(post_owned, post_relevant, comm),
-      ep_g(post_owned, post_relevant, comm),
-      slip_g(post_owned, post_relevant, comm),
-      status_g(post_owned, post_relevant, comm);
-    vm_g     = vm_w;
-    p_g      = surface.pressure;
-    slip_g   = surface.slip;
-    status_g = surface.status;
-    gap_g    = gap;
-    pr_g     = pr_w;
-    ep_g     = ep_w;
-
-    Vector<float> particle_id(triangulation.n_active_cells()),
-      rank(triangulation.n_active_cells());
-    for (const auto &cell : triangulation.active_cell_iterators())
-      {
-        particle_id(cell->active_cell_index()) = cell->material_id();
-        rank(cell->active_cell_index())        = cell->subdomain_id();
-      }
-
-    DataOut<3> data_out;
-    data_out.attach_dof_handler(dof_handler);
-    data_out.add_data_vector(
-      solution_ghosted,
-      std::vector<std::string>(3, "displacement"),
-      DataOut<3>::type_dof_data,
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        3, DataComponentInterpretation::component_is_part_of_vector));
-    data_out.add_data_vector(post_dof_handler, vm_g, "von_mises");
-    data_out.add_data_vector(post_dof_handler, p_g, "contact_pressure");
-    data_out.add_data_vector(post_dof_handler, gap_g, "gap");
-    data_out.add_data_vector(post_dof_handler, pr_g, "pressure");
-    if (effects.any_friction())
-      {
-        data_out.add_data_vector(post_dof_handler, slip_g, "slip");
-        data_out.add_data_vector(post_dof_handler, status_g, "stick_slip");
-      }
-    if (has_history)
-      data_out.add_data_vector(post_dof_handler, ep_g, "plastic_strain");
-    data_out.add_data_vector(particle_id, "particle_id");
-    data_out.add_data_vector(rank, "mpi_rank");
-    data_out.build_patches(*mapping, prm.mesh.degree);
-    const std::string dir = prm.output.directory + "/";
-    // a rank that cannot write (e.g. a full disk) stops every rank with the
-    // file and the cause
-    std::string pvtu, error;
-    errno = 0;
-    try
-      {
-        pvtu =
-          data_out.write_vtu_with_pvtu_record(dir, "solution", step, comm, 5);
-      }
-    catch (const std::exception &)
-      {
-        error =
-          "graphics: " + write_error(dir + "solution_" +
-                                     Utilities::int_to_string(step, 5) + ".*");
-      }
-    error = first_error(error, comm);
-    if (!error.empty())
-      throw std::runtime_error(error);
-    pvd_records.emplace_back(time, pvtu);
-    if (this_rank == 0)
-      {
-        // write then rename, so that the .pvd is always complete
-        const std::string tmp = dir + "solution.pvd.tmp";
-        errno                 = 0;
-        std::ofstream pvd(tmp);
-        DataOutBase::write_pvd_record(pvd, pvd_records);
-        pvd.close();
-        if (pvd.fail())
-          {
-            error = "graphics: " + write_error(tmp);
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-          }
-        else
-          std::filesystem::rename(tmp, dir + "solution.pvd");
-      }
-    error = first_error(error, comm);
-    if (!error.empty())
-      throw std::runtime_error(error);
+    graphics.write(step,
+                   time,
+                   dof_handler,
+                   *mapping,
+                   prm.mesh.degree,
+                   solution_ghosted,
+                   particle_material,
+                   continuum->has_history() ? &continuum->committed() : nullptr,
+                   continuum->states_per_cell(),
+                   continuum->fbar(),
+                   tool_contact.get(),
+                   particle_contact.get(),
+                   effects.any_friction(),
+                   prm.output.directory,
+                   comm);
   }
 
 
@@ -1240,20 +794,8 @@ namespace densify
             }
           statistics_writer =
             std::make_unique<StatisticsWriter>(statistics_name, append);
-          particle_file.open(particle_name,
-                             append ? std::ios::app : std::ios::trunc);
-          if (!append)
-            {
-              const std::string error = append_or_roll_back(
-                particle_file,
-                particle_name,
-                "step,particle,material,volume,initial_volume,"
-                "mean_displacement_x,mean_displacement_y,"
-                "mean_displacement_z,rotation_x,rotation_y,"
-                "rotation_z,contact_partners,die_contact\n");
-              if (!error.empty())
-                throw std::runtime_error(error);
-            }
+          particle_writer =
+            std::make_unique<ParticleTableWriter>(particle_name, append);
         }
       catch (const std::exception &e)
         {
@@ -1345,22 +887,8 @@ namespace densify
         // rank; the rows written before stay complete
         std::string write_failure;
         if (this_rank == 0)
-          {
-            // one row per particle and step
-            std::ostringstream rows;
-            for (unsigned int p = 0; p < particles.size(); ++p)
-              rows << step << ',' << p << ',' << particles[p].material << ','
-                   << std::setprecision(10) << measures[p].volume << ','
-                   << initial_volumes[p] << ','
-                   << measures[p].mean_displacement[0] << ','
-                   << measures[p].mean_displacement[1] << ','
-                   << measures[p].mean_displacement[2] << ','
-                   << measures[p].rotation[0] << ',' << measures[p].rotation[1]
-                   << ',' << measures[p].rotation[2] << ',' << partners[p]
-                   << ',' << (die_force[p] > 0 ? 1 : 0) << '\n';
-            write_failure =
-              append_or_roll_back(particle_file, particle_name, rows.str());
-          }
+          write_failure = particle_writer->write(
+            step, particles, measures, initial_volumes, partners, die_force);
         s.relative_density = density(s.particle_volume, upper);
         s.plastic_work     = continuum->plastic_work(*mapping);
         if (effects.method == Method::explicit_dynamics)

@@ -120,6 +120,9 @@ namespace densify
     if (!error.empty())
       throw std::runtime_error(error);
 
+    // the .pvd's records of the graphics written so far
+    const GraphicsWriter::Records &pvd_records = graphics.records();
+
     CheckpointHeader header;
     header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
     header.rank        = this_rank;
@@ -276,6 +279,9 @@ namespace densify
           "without --resume to start from the beginning");
       }
 
+    // the .pvd's records of the graphics up to the checkpoint
+    GraphicsWriter::Records pvd_records;
+
     CheckpointHeader           header;
     unsigned int               step = 0;
     double                     wall = 0.;
@@ -396,6 +402,7 @@ namespace densify
       }
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none
+    graphics.set_records(pvd_records);
     std::string error;
     if (this_rank == 0 &&
         (!pvd_records.empty() || fs::exists(dir / "solution.pvd")))

@@ -30,6 +30,8 @@
 #include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
+#include <densify/postprocess/graphics.h>
+#include <densify/postprocess/particle_measures.h>
 #include <densify/postprocess/statistics.h>
 #include <densify/scene.h>
 #include <densify/solvers/linear_solver.h>
@@ -186,18 +188,6 @@ namespace densify
     particle_mean_displacements() const;
 
   private:
-    /// Measures of one particle in the current state.
-    struct ParticleMeasure
-    {
-      /// Current volume (mm^3).
-      double volume = 0.;
-      /// Volume-weighted mean displacement (mm).
-      Tensor<1, 3> mean_displacement;
-      /// Mean rigid rotation vector (rad; small-rotation measure): the
-      /// w that best fits u = w x (X - centre) after the mean translation.
-      Tensor<1, 3> rotation;
-    };
-
     /// Measure every particle (one pass over the cells; on every rank).
     std::vector<ParticleMeasure>
     measure_particles() const;
@@ -475,10 +465,12 @@ namespace densify
     ExplicitDynamics::Account         explicit_account;
     std::vector<StepStatistics>       step_statistics;
     std::unique_ptr<StatisticsWriter> statistics_writer;
-    /// particles.csv: per particle and step, volume and mean displacement.
-    std::ofstream particle_file;
+    /// particles.csv: per particle and step, volume and mean displacement
+    /// (rank 0).
+    std::unique_ptr<ParticleTableWriter> particle_writer;
     /// Volume of each particle's mesh at the start (mm^3).
-    std::vector<double>                         initial_volumes;
-    std::vector<std::pair<double, std::string>> pvd_records;
+    std::vector<double> initial_volumes;
+    /// The graphics and the records of the .pvd.
+    GraphicsWriter graphics;
   };
 } // namespace densify

@@ -363,6 +363,27 @@ namespace densify
 
 
 
+  Tensor<2, 3>
+  fbar_deformation(const Tensor<2, 3> &F,
+                   const double        j_bar,
+                   const bool          finite_strain,
+                   double             *scale)
+  {
+    if (finite_strain)
+      {
+        const double sc = std::cbrt(j_bar / determinant(F));
+        if (scale != nullptr)
+          *scale = sc;
+        return sc * F;
+      }
+    if (scale != nullptr)
+      *scale = 1.;
+    return F + (j_bar - (trace(F) - 2.)) / 3. *
+                 Tensor<2, 3>(unit_symmetric_tensor<3>());
+  }
+
+
+
   std::vector<double>
   NodalAveraging::vertex_volume_measures(
     const TrilinosWrappers::MPI::Vector                &solution,
@@ -489,20 +510,17 @@ namespace densify
           {
             const unsigned int a = c.vertex[v];
             // Fbar = sc F (finite strain), D the denominator of d(ln j_a)
-            double       sc = 1., D = 1.;
-            Tensor<2, 3> F_bar, N;
+            double             sc = 1., D = 1.;
+            const Tensor<2, 3> F_bar =
+              fbar_deformation(s.F, j_bar[a], finite, &sc);
+            Tensor<2, 3> N;
             if (finite)
               {
-                sc    = std::cbrt(j_bar[a] / s.j);
-                F_bar = sc * s.F;
-                N     = s.F;
-                D     = j_bar[a];
+                N = s.F;
+                D = j_bar[a];
               }
             else
-              {
-                F_bar = s.F + (j_bar[a] - s.j) / 3. * I;
-                N     = I;
-              }
+              N = I;
             const std::size_t k = std::size_t(e) * 4 + v;
             if (shared && v > 0)
               {

@@ -216,4 +216,19 @@ namespace densify
                           const Value                    &value,
                           std::vector<double>            &row) const;
   };
+
+  /**
+   * The modified deformation gradient of the nodal-averaged F-bar at a cell
+   * corner: with the cell's deformation gradient @p F and the vertex average
+   * @p j_bar of the volume measure (NodalAveraging::vertex_volume_measures()),
+   * Fbar = (j_bar / det F)^(1/3) F at finite strain and
+   * Fbar = F + (j_bar - (tr F - 2)) / 3 I at small strain. If @p scale is
+   * not nullptr it receives the factor (j_bar / det F)^(1/3) at finite
+   * strain and 1 at small strain.
+   */
+  Tensor<2, 3>
+  fbar_deformation(const Tensor<2, 3> &F,
+                   const double        j_bar,
+                   const bool          finite_strain,
+                   double             *scale = nullptr);
 } // namespace densify

@@ -1,0 +1,146 @@
+// Measures of each particle, and the particles.csv writer.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <densify/postprocess/particle_measures.h>
+#include <densify/utilities.h>
+
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace densify
+{
+  std::vector<ParticleMeasure>
+  measure_particles(
+    const DoFHandler<3>                                &dof_handler,
+    const Mapping<3>                                   &mapping,
+    const unsigned int                                  degree,
+    const TrilinosWrappers::MPI::Vector                &solution,
+    const std::vector<Particle>                        &particles,
+    const std::vector<std::shared_ptr<const Material>> &materials,
+    const MPI_Comm                                      comm)
+  {
+    const QGaussSimplex<3>           quadrature(degree + 1);
+    FEValues<3>                      fe_values(mapping,
+                          dof_handler.get_fe(),
+                          quadrature,
+                          update_values | update_gradients |
+                            update_quadrature_points | update_JxW_values);
+    const FEValuesExtractors::Vector u(0);
+    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
+    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
+    // per particle, with r = X - centre: [0] current volume, [1] reference
+    // volume, [2..4] int u, [5..7] int r x u, [8..10] int r, [11..19] the
+    // inertia tensor int (|r|^2 I - r r)
+    constexpr unsigned int n = 20;
+    std::vector<double>    sums(n * particles.size(), 0.);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[u].get_function_values(solution, u_q);
+          fe_values[u].get_function_gradients(solution, grad_u);
+          const unsigned int p      = cell->material_id();
+          double            *sum    = &sums[n * p];
+          const bool         finite = materials[p]->finite_strain();
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double JxW = fe_values.JxW(q);
+              // volume as the kinematics of the particle's law sees it
+              // (det F is not rotation-free for linearised rotations)
+              sum[0] +=
+                (finite ? determinant(unit_symmetric_tensor<3>() + grad_u[q]) :
+                          1. + trace(grad_u[q])) *
+                JxW;
+              sum[1] += JxW;
+              const Tensor<1, 3> r =
+                fe_values.quadrature_point(q) - particles[p].centre;
+              const Tensor<1, 3> r_x_u = cross_product_3d(r, u_q[q]);
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  sum[2 + d] += u_q[q][d] * JxW;
+                  sum[5 + d] += r_x_u[d] * JxW;
+                  sum[8 + d] += r[d] * JxW;
+                  for (unsigned int e = 0; e < 3; ++e)
+                    sum[11 + 3 * d + e] +=
+                      ((d == e ? r * r : 0.) - r[d] * r[e]) * JxW;
+                }
+            }
+        }
+    Utilities::MPI::sum(sums, comm, sums);
+    std::vector<ParticleMeasure> measures(particles.size());
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        const double *sum  = &sums[n * p];
+        measures[p].volume = sum[0];
+        Tensor<1, 3> mean, moment, first;
+        Tensor<2, 3> inertia;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            mean[d]   = sum[2 + d] / sum[1];
+            moment[d] = sum[5 + d];
+            first[d]  = sum[8 + d];
+            for (unsigned int e = 0; e < 3; ++e)
+              inertia[d][e] = sum[11 + 3 * d + e];
+          }
+        measures[p].mean_displacement = mean;
+        // rigid rotation u = w x r gives int r x u = I w; the translation
+        // part is taken out first
+        measures[p].rotation =
+          invert(inertia) * (moment - cross_product_3d(first, mean));
+      }
+    return measures;
+  }
+
+
+
+  ParticleTableWriter::ParticleTableWriter(const std::string &filename,
+                                           const bool         append)
+    : filename(filename)
+    , out(filename, append ? std::ios::app : std::ios::trunc)
+  {
+    if (!append)
+      {
+        const std::string error =
+          append_or_roll_back(out, filename, header() + "\n");
+        if (!error.empty())
+          throw std::runtime_error(error);
+      }
+  }
+
+
+
+  std::string
+  ParticleTableWriter::header()
+  {
+    return "step,particle,material,volume,initial_volume,"
+           "mean_displacement_x,mean_displacement_y,"
+           "mean_displacement_z,rotation_x,rotation_y,"
+           "rotation_z,contact_partners,die_contact";
+  }
+
+
+
+  std::string
+  ParticleTableWriter::write(const unsigned int                  step,
+                             const std::vector<Particle>        &particles,
+                             const std::vector<ParticleMeasure> &measures,
+                             const std::vector<double>       &initial_volumes,
+                             const std::vector<unsigned int> &partners,
+                             const std::vector<double>       &die_force)
+  {
+    std::ostringstream rows;
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      rows << step << ',' << p << ',' << particles[p].material << ','
+           << std::setprecision(10) << measures[p].volume << ','
+           << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
+           << ',' << measures[p].mean_displacement[1] << ','
+           << measures[p].mean_displacement[2] << ',' << measures[p].rotation[0]
+           << ',' << measures[p].rotation[1] << ',' << measures[p].rotation[2]
+           << ',' << partners[p] << ',' << (die_force[p] > 0 ? 1 : 0) << '\n';
+    return append_or_roll_back(out, filename, rows.str());
+  }
+} // namespace densify
