@@ -5,9 +5,10 @@
 // the METIS partition are deterministic for the same scene and number of
 // ranks), and the checkpoint records what identifies it (cells, DoFs, a sum
 // of the vertex coordinates, the ranks) to refuse a checkpoint of another
-// mesh. Each rank writes what it owns (vectors, quadrature-point history of
-// its cells, contact state of its contact points) into its own file with a
-// boost binary archive, as deal.II serializes its own classes.
+// mesh. Each rank writes what it owns (vectors, and each force term's state:
+// the quadrature-point history of its cells, the contact state of its
+// contact points) into its own file with a boost binary archive, as deal.II
+// serializes its own classes.
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -33,7 +34,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 3;
+    constexpr unsigned int checkpoint_version = 4;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -151,27 +152,11 @@ namespace densify
                         std::vector<double>(locally_owned.n_elements(), 0.);
             double next_increment = stepper ? stepper->next_increment : 0.;
             double last_punch_increment = stepper ? stepper->last_travel : 0.;
-            // the history of this rank's cells
-            std::vector<MaterialState> history;
-            if (continuum->has_history())
-              {
-                const unsigned int n_q = continuum->states_per_cell();
-                for (const auto &cell : triangulation.active_cell_iterators())
-                  if (cell->is_locally_owned())
-                    for (unsigned int q = 0; q < n_q; ++q)
-                      history.push_back(
-                        continuum
-                          ->committed()[cell->active_cell_index() * n_q + q]);
-              }
-            ContactState tools =
-              tool_contact ? tool_contact->state() : ContactState();
-            ContactState contacts =
-              particle_contact ? particle_contact->state() : ContactState();
-            unsigned int last_step = step;
-            double       wall      = wall_seconds;
+            unsigned int last_step      = step;
+            double       wall           = wall_seconds;
             archive &header &last_step &current_time &current_upper
               &next_increment &last_punch_increment &wall &solution_values
-                &increment_values &history &tools &contacts &pvd_records;
+                &increment_values &pvd_records;
             // explicit dynamics: the integrator, the loads' account and the
             // mass-scaling factors
             ExplicitDynamics::State dynamics;
@@ -187,6 +172,9 @@ namespace densify
               }
             archive &dynamics &explicit_work &factors &calibration
               &calibrated_bound &mass_updates &mode;
+            // each force term's state (history, multipliers, friction)
+            for (const ForceTerm *term : force_terms())
+              term->write_checkpoint(archive);
           }
           // complete on disk only once the stream is flushed and closed
           out.close();
@@ -282,18 +270,15 @@ namespace densify
     // the .pvd's records of the graphics up to the checkpoint
     GraphicsWriter::Records pvd_records;
 
-    CheckpointHeader           header;
-    unsigned int               step = 0;
-    double                     wall = 0.;
-    std::vector<double>        solution_values, increment_values;
-    std::vector<MaterialState> history;
-    ContactState               tools;
-    ContactState               contacts;
-    double                     next_increment = 0., last_punch_increment = 0.;
-    ExplicitDynamics::State    dynamics;
-    std::vector<double>        factors;
-    double                     calibration = 1.;
-    std::vector<double>        mode;
+    CheckpointHeader        header;
+    unsigned int            step = 0;
+    double                  wall = 0.;
+    std::vector<double>     solution_values, increment_values;
+    double                  next_increment = 0., last_punch_increment = 0.;
+    ExplicitDynamics::State dynamics;
+    std::vector<double>     factors;
+    double                  calibration = 1.;
+    std::vector<double>     mode;
     try
       {
         boost::archive::binary_iarchive archive(in);
@@ -334,8 +319,10 @@ namespace densify
                            "without --resume");
         archive &step &current_time &current_upper &next_increment
           &last_punch_increment &wall &solution_values &increment_values
-            &history &tools &contacts &pvd_records &dynamics &explicit_work
-              &factors &calibration &calibrated_bound &mass_updates &mode;
+            &pvd_records &dynamics &explicit_work &factors &calibration
+              &calibrated_bound &mass_updates &mode;
+        for (ForceTerm *term : force_terms())
+          term->read_checkpoint(archive);
       }
     catch (const InputError &)
       {
@@ -357,24 +344,6 @@ namespace densify
         stepper->next_increment = next_increment;
         stepper->last_travel    = last_punch_increment;
       }
-    if (continuum->has_history())
-      {
-        const unsigned int         n_q = continuum->states_per_cell();
-        std::vector<MaterialState> states(continuum->committed());
-        unsigned int               k = 0;
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (unsigned int q = 0; q < n_q; ++q)
-              {
-                AssertIndexRange(k, history.size());
-                states[cell->active_cell_index() * n_q + q] = history[k++];
-              }
-        continuum->set_committed(states);
-      }
-    if (tool_contact)
-      tool_contact->set_state(tools);
-    if (particle_contact)
-      particle_contact->set_state(contacts);
     wall_before       = wall;
     committed_ghosted = solution;
     update_ghosts();

@@ -214,6 +214,15 @@ namespace densify
       ParticleContactResult particles;
     };
 
+    /// Every force term that is on: the bulk terms, then the others.
+    std::vector<ForceTerm *>
+    force_terms() const
+    {
+      std::vector<ForceTerm *> all = bulk_terms;
+      all.insert(all.end(), other_terms.begin(), other_terms.end());
+      return all;
+    }
+
     /// The contact results of the last assembly.
     ContactResults
     contact_results() const;

@@ -10,6 +10,10 @@
 #include <densify/assembly/continuum.h>
 #include <densify/assembly/nodal_averaging.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <stdexcept>
 
 namespace densify
@@ -209,5 +213,43 @@ namespace densify
             }
         }
     return Utilities::MPI::sum(work, dof_handler.get_communicator());
+  }
+
+
+  void
+  Continuum::write_checkpoint(boost::archive::binary_oarchive &archive) const
+  {
+    // the history of this rank's cells, in the order of the cells
+    std::vector<MaterialState> states;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (history && cell->is_locally_owned())
+        for (unsigned int k = 0; k < per_cell; ++k)
+          states.push_back(
+            committed_history[cell->active_cell_index() * per_cell + k]);
+    archive << states;
+  }
+
+
+
+  void
+  Continuum::read_checkpoint(boost::archive::binary_iarchive &archive)
+  {
+    std::vector<MaterialState> states;
+    archive >> states;
+    unsigned int k = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (history && cell->is_locally_owned())
+        for (unsigned int q = 0; q < per_cell; ++q, ++k)
+          {
+            if (k >= states.size())
+              throw std::runtime_error(
+                "the checkpoint's material history is incomplete");
+            committed_history[cell->active_cell_index() * per_cell + q] =
+              states[k];
+          }
+    if (k != states.size())
+      throw std::runtime_error(
+        "the checkpoint's material history does not fit the mesh");
+    trial_history = committed_history;
   }
 } // namespace densify

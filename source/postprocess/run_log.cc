@@ -4,6 +4,7 @@
 #include <densify/postprocess/run_log.h>
 #include <densify/utilities.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <filesystem>
@@ -111,5 +112,46 @@ namespace densify
     if (!error.empty())
       throw InputError(error);
     return log;
+  }
+
+
+  std::string
+  progress_line(const StepStatistics &s,
+                const unsigned int    n_steps,
+                const bool            poles,
+                const bool            density,
+                const bool            explicit_dynamics,
+                const double          left)
+  {
+    std::ostringstream out;
+    out << "step " << s.step << "/" << n_steps << "  t=" << std::setprecision(4)
+        << s.time << " s  punch " << s.punch_displacement << " mm  F_upper "
+        << std::setprecision(5) << s.upper_punch_force << " N  F_lower "
+        << s.lower_punch_force << " N  F_die " << s.die_wall_radial_force
+        << " N  F_stab " << std::setprecision(2) << s.stabilisation_force
+        << " N";
+    if (poles)
+      out << "  F_pole " << std::setprecision(2) << s.pole_force << " N";
+    if (density)
+      out << "  density " << std::setprecision(4) << 100 * s.relative_density
+          << " %";
+    if (explicit_dynamics)
+      out << "  explicit " << s.increments << " steps (dt "
+          << std::setprecision(3) << s.time_step << " s)  KE/IE "
+          << std::setprecision(2)
+          << 100. * s.kinetic_energy / std::max(s.internal_work, 1e-300)
+          << " %";
+    else
+      {
+        out << "  newton " << s.newton_iterations << " (cg "
+            << s.linear_iterations << ", aug " << s.augmentations;
+        if (s.cutbacks > 0)
+          out << ", " << s.cutbacks << " cut-back(s), " << s.increments
+              << " increments";
+        out << ")";
+      }
+    out << "  " << format_seconds(s.wall_seconds) << ", ~"
+        << format_seconds(left) << " left";
+    return out.str();
   }
 } // namespace densify

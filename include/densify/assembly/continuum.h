@@ -94,13 +94,12 @@ namespace densify
       return trial_history;
     }
 
-    /// Replace the committed (and trial) history, e.g. from a checkpoint.
+    /// The history of the locally owned cells.
     void
-    set_committed(const std::vector<MaterialState> &states)
-    {
-      committed_history = states;
-      trial_history     = states;
-    }
+    write_checkpoint(boost::archive::binary_oarchive &archive) const override;
+
+    void
+    read_checkpoint(boost::archive::binary_iarchive &archive) override;
 
     /// The F-bar of the locking remedy, or null.
     const NodalAveraging *

@@ -10,6 +10,15 @@
 
 #include <string>
 
+namespace boost
+{
+  namespace archive
+  {
+    class binary_oarchive;
+    class binary_iarchive;
+  } // namespace archive
+} // namespace boost
+
 namespace densify
 {
   using namespace dealii;
@@ -84,6 +93,17 @@ namespace densify
     /// Go back to the state kept by save().
     virtual void
     restore()
+    {}
+
+    /// Write the committed state this rank holds into a checkpoint.
+    virtual void
+    write_checkpoint(boost::archive::binary_oarchive & /*archive*/) const
+    {}
+
+    /// Read what write_checkpoint() wrote (same scene and ranks); throws
+    /// if it does not fit.
+    virtual void
+    read_checkpoint(boost::archive::binary_iarchive & /*archive*/)
     {}
   };
 } // namespace densify

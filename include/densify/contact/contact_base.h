@@ -10,6 +10,11 @@
 
 #include <densify/assembly/force_term.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <stdexcept>
 #include <vector>
 
 namespace densify
@@ -242,6 +247,24 @@ namespace densify
     restore() override
     {
       set_state(saved);
+    }
+
+    void
+    write_checkpoint(boost::archive::binary_oarchive &archive) const override
+    {
+      const ContactState now = state();
+      archive << now;
+    }
+
+    void
+    read_checkpoint(boost::archive::binary_iarchive &archive) override
+    {
+      ContactState loaded;
+      archive >> loaded;
+      if (loaded.lambda.size() != lambda.size())
+        throw std::runtime_error("the checkpoint's " + name() +
+                                 " has another number of contact points");
+      set_state(loaded);
     }
 
   protected:

@@ -2,6 +2,8 @@
 // console and the log at once, and the wall times it reports.
 #pragma once
 
+#include <densify/postprocess/statistics.h>
+
 #include <mpi.h>
 
 #include <fstream>
@@ -45,4 +47,17 @@ namespace densify
   open_log(const std::string &directory,
            const MPI_Comm     comm,
            const bool         append);
+  /**
+   * The console's line of a finished load step @p s of @p n_steps: time,
+   * punch, forces (the pole springs' with @p poles), the relative density
+   * (with @p density), the explicit steps or the Newton counts
+   * (@p explicit_dynamics), the wall time and the time @p left (s).
+   */
+  std::string
+  progress_line(const StepStatistics &s,
+                const unsigned int    n_steps,
+                const bool            poles,
+                const bool            density,
+                const bool            explicit_dynamics,
+                const double          left);
 } // namespace densify

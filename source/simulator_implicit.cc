@@ -1,0 +1,213 @@
+// The Simulator as the problem of the implicit method: the residual and
+// tangent of the force terms for the NewtonSolver, the loads, the contact
+// augmentation and the commit and roll-back of an increment for the
+// LoadStepper.
+#include <deal.II/base/mpi.h>
+
+#include <densify/simulator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace densify
+{
+  NonlinearProblem::Evaluation
+  Simulator::assemble(const bool   with_matrix,
+                      const double tangent_margin,
+                      const bool   search)
+  {
+    TimerOutput::Scope t(timer,
+                         with_matrix ? "Assembly: tangent+residual" :
+                                       "Assembly: residual");
+    update_ghosts();
+    if ((with_matrix || search) && particle_contact)
+      {
+        // refresh the particle contact search; new couplings need a new
+        // matrix pattern (without a tangent the next assembly with one
+        // repeats the search and finds them)
+        TimerOutput::Scope ts(timer, "Contact: search");
+        if (!particle_contact->update_search(solution_ghosted, search_margin) &&
+            with_matrix)
+          setup_matrix();
+      }
+    residual = 0;
+    if (with_matrix)
+      tangent = 0;
+    Evaluation result;
+    result.reference_norm =
+      assemble_terms(residual, with_matrix, tangent_margin);
+    result.residual_norm         = residual.l2_norm();
+    const ContactResults contact = contact_results();
+    std::ostringstream   text;
+    text << "contact points "
+         << contact.tools.n_active + contact.particles.n_active << " (slip "
+         << contact.tools.n_slip + contact.particles.n_slip
+         << "), penetration (tools, particles) "
+         << contact.tools.max_penetration << ", "
+         << contact.particles.max_penetration << " mm";
+    result.description = text.str();
+    return result;
+  }
+
+
+
+  unsigned int
+  Simulator::solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
+                          TrilinosWrappers::MPI::Vector       &du,
+                          const double relative_tolerance)
+  {
+    const unsigned int factorized = linear_solver->n_factorizations();
+    const unsigned int iterations =
+      linear_solver->solve(tangent, du, rhs, relative_tolerance);
+    if (prm.output.verbose && linear_solver->n_factorizations() != factorized)
+      pcout << "      factorization: "
+            << linear_solver->factorization_statistics() << std::endl;
+    if (stabilisation)
+      last_stabilisation_force = stabilisation->force(du);
+    return iterations;
+  }
+
+
+
+  void
+  Simulator::begin_solve()
+  {
+    // each Newton solve starts from the closest master facets; within it a
+    // slave point keeps its facet while it stays near (hysteresis)
+    if (particle_contact)
+      particle_contact->reset_projections();
+  }
+
+
+
+  unsigned int
+  Simulator::after_update()
+  {
+    update_ghosts();
+    return particle_contact ?
+             particle_contact->update_projections(*mapping, solution_ghosted) :
+             0;
+  }
+
+
+
+  std::string
+  Simulator::iteration_details()
+  {
+    if (!continuum->has_history())
+      return "";
+    // the material points yielding in this increment at the current
+    // iterate, and how many of them changed since the last iterate
+    const std::vector<MaterialState> &now      = continuum->trial();
+    const std::vector<MaterialState> &old      = continuum->committed();
+    const unsigned int                per_cell = continuum->states_per_cell();
+    unsigned long                     n = 0, changed = 0;
+    was_plastic.resize(now.size(), 0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int k = 0; k < per_cell; ++k)
+          {
+            const std::size_t i      = cell->active_cell_index() * per_cell + k;
+            const Material &material = *particle_material[cell->material_id()];
+            const char plastic = material.equivalent_plastic_strain(now[i]) >
+                                 material.equivalent_plastic_strain(old[i]);
+            n += plastic;
+            changed += (plastic != was_plastic[i]);
+            was_plastic[i] = plastic;
+          }
+    return ", yielding points " + std::to_string(Utilities::MPI::sum(n, comm)) +
+           " (changed " + std::to_string(Utilities::MPI::sum(changed, comm)) +
+           ")";
+  }
+
+
+
+  double
+  Simulator::set_loads(const double time, const double increment)
+  {
+    const double upper = upper_punch_position(time);
+    load_time          = time;
+    if (body_force)
+      body_force->set_time(time);
+    if (tool_contact)
+      {
+        tool_contact->set_tool_position(ToolKind::upper_punch, upper);
+        tool_contact->set_tool_translation(
+          ToolKind::upper_punch,
+          Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
+      }
+    // the arctangent law's slip scale: the threshold velocity times the
+    // increment's duration
+    const double regularisation = prm.contact.slip_velocity * increment;
+    if (tool_contact)
+      tool_contact->set_friction_regularisation(regularisation);
+    if (particle_contact)
+      particle_contact->set_friction_regularisation(regularisation);
+    return std::abs(upper - current_upper);
+  }
+
+
+
+  double
+  Simulator::evaluate_constraints()
+  {
+    TimerOutput::Scope t(timer, "Contact: multipliers");
+    ContactResults     contact;
+    if (tool_contact)
+      contact.tools = tool_contact->evaluate(*mapping, solution_ghosted);
+    if (particle_contact)
+      contact.particles =
+        particle_contact->evaluate(*mapping, solution_ghosted);
+    last_contact = contact;
+    return std::max(contact.tools.max_penetration,
+                    contact.particles.max_penetration);
+  }
+
+
+
+  void
+  Simulator::update_multipliers()
+  {
+    TimerOutput::Scope t(timer, "Contact: multipliers");
+    if (tool_contact)
+      tool_contact->update_multipliers(*mapping, solution_ghosted);
+    if (particle_contact)
+      particle_contact->update_multipliers(*mapping, solution_ghosted);
+  }
+
+
+
+  void
+  Simulator::save_state()
+  {
+    for (ForceTerm *term : other_terms)
+      term->save();
+  }
+
+
+
+  void
+  Simulator::restore_state()
+  {
+    for (ForceTerm *term : other_terms)
+      term->restore();
+    update_ghosts();
+  }
+
+
+
+  void
+  Simulator::commit()
+  {
+    // the history of the material and of friction
+    update_ghosts();
+    const AssemblyContext c = context();
+    for (ForceTerm *term : bulk_terms)
+      term->commit(c);
+    for (ForceTerm *term : other_terms)
+      term->commit(c);
+    committed_ghosted = solution;
+    current_upper     = upper_punch_position(load_time);
+  }
+} // namespace densify
