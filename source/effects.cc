@@ -142,6 +142,11 @@ namespace densify
     e.line_search   = (prm.solver.line_search == "energy" ? LineSearch::energy :
                                                             LineSearch::residual);
     e.stabilisation = prm.solver.stabilisation > 0;
+    e.continuation =
+      e.method == Method::explicit_dynamics ? Continuation::off :
+      prm.solver.continuation == "always"   ? Continuation::always :
+      prm.solver.continuation == "fallback" ? Continuation::fallback :
+                                              Continuation::off;
 
     // loads
     e.body_force = scene.body_force.norm() > 0;
@@ -243,6 +248,8 @@ namespace densify
         out << "; linear solver " << linear_solver_name(e.linear_solver);
         if (e.geometric_tangent)
           out << ", geometric contact tangent";
+        if (e.continuation == Continuation::always)
+          out << ", pseudo-transient continuation";
       }
     return out.str();
   }

@@ -183,6 +183,8 @@ namespace densify
     // Newton iteration
     newton_control.step_limit = 0.5 * h_min;
     newton_control.verbose    = prm.output.verbose;
+    newton_control.continuation       = effects.continuation;
+    newton_control.continuation_start = prm.solver.pseudo_mass;
     // absolute floor: a force far below anything the scene can carry
     double E_max = 0, D_max = 0;
     for (unsigned int p = 0; p < particles.size(); ++p)
@@ -307,16 +309,21 @@ namespace densify
                                           effects.particle_contact);
         other_terms.push_back(pole_springs.get());
       }
-    if (effects.stabilisation)
+    if (effects.stabilisation || effects.continuation != Continuation::off)
       {
-        // beta E / D^2 times the mass matrix of each particle
+        // E / D^2 times the mass matrix of each particle: the stabilisation
+        // (times beta) and the pseudo mass of the continuation
         std::vector<double> alpha;
         for (unsigned int p = 0; p < particles.size(); ++p)
-          alpha.push_back(prm.solver.stabilisation *
-                          particle_material[p]->youngs_modulus() /
+          alpha.push_back(particle_material[p]->youngs_modulus() /
                           (particles[p].diameter * particles[p].diameter));
         stabilisation =
-          std::make_unique<Stabilisation>(dof_handler, alpha, prm.mesh.degree);
+          std::make_unique<Stabilisation>(dof_handler,
+                                          alpha,
+                                          effects.stabilisation ?
+                                            prm.solver.stabilisation :
+                                            0.,
+                                          prm.mesh.degree);
         other_terms.push_back(stabilisation.get());
       }
   }
@@ -628,6 +635,7 @@ namespace densify
                 s.linear_iterations = counts.linear_iterations;
                 s.augmentations     = counts.augmentations;
                 s.cutbacks          = counts.cutbacks;
+                s.continuations     = counts.continuations;
                 s.increments        = counts.increments;
                 results             = last_contact;
               }

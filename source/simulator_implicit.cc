@@ -71,6 +71,15 @@ namespace densify
 
 
   void
+  Simulator::add_pseudo_mass(const double factor)
+  {
+    Assert(stabilisation, ExcInternalError());
+    stabilisation->add_scaled(tangent, factor);
+  }
+
+
+
+  void
   Simulator::begin_solve()
   {
     // each Newton solve starts from the closest master facets; within it a

@@ -24,7 +24,8 @@
 // the outer centres): 0.00039 mm on 1 and 2 ranks with OpenBLAS's Haswell
 // kernels, 0.00055 mm on 2 ranks with its SkylakeX kernels
 // (OPENBLAS_CORETYPE=SkylakeX), where the other printed quantities are the
-// same. The drift relative to the ring is 0.0061 mm.
+// same. The drift relative to the ring is 0.0061 mm on 1 rank; the
+// frictionless forces and drifts are checked against bounds, not printed.
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>
@@ -90,9 +91,19 @@ namespace
           << " % of the particle contact force" << std::endl;
     out << "  upper = lower + die wall to 1e-6: "
         << testing::yes(worst_balance < 1e-6) << std::endl
-        << "  particle contacts: " << last.contact_pairs << " pairs, "
-        << std::setprecision(4) << last.particle_contact_force << " N"
-        << std::endl;
+        << "  particle contacts: " << last.contact_pairs << " pairs, ";
+    // without friction the state is set by round-off (the ring's free
+    // rotation, and where Newton needs a retry, the path to one of the
+    // nearby equilibria of the faceted spheres): its forces are checked
+    // within 2 % of the 1-rank run's 2569 N (1 % seen between runs on 2
+    // ranks that differ in round-off only) and not printed
+    if (mu > 0)
+      out << std::setprecision(4) << last.particle_contact_force << " N";
+    else
+      out << "within 2 % of 2569 N: "
+          << testing::yes(std::abs(last.particle_contact_force - 2569.) <
+                          0.02 * 2569.);
+    out << std::endl;
 
     // the six outer spheres carry equal punch forces
     const std::vector<double> force =
@@ -101,9 +112,11 @@ namespace
       *std::min_element(force.begin() + 1, force.begin() + 7);
     const double f_max =
       *std::max_element(force.begin() + 1, force.begin() + 7);
-    out << "  outer punch forces " << f_min << " .. " << f_max
-        << " N, equal within 1 %: "
-        << testing::yes(f_max - f_min < 0.01 * f_max) << std::endl;
+    out << "  outer punch forces ";
+    if (mu > 0)
+      out << f_min << " .. " << f_max << " N, ";
+    out << "equal within 1 %: " << testing::yes(f_max - f_min < 0.01 * f_max)
+        << std::endl;
     const std::vector<unsigned int> partners = simulator.contact_partners();
     const unsigned int              outer_min =
       *std::min_element(partners.begin() + 1, partners.begin() + 7);
@@ -137,10 +150,13 @@ namespace
         absolute = std::max(absolute, std::abs(ti));
       }
     const double sideways = mu > 0 ? absolute : relative;
-    out << std::setprecision(2) << "  centre sphere drift " << centre_drift
-        << " mm, outer spheres' sideways drift "
-        << (mu > 0 ? "" : "relative to the ring ") << sideways
-        << " mm, both below 0.01 mm: "
+    out << std::setprecision(2) << "  centre sphere drift ";
+    if (mu > 0)
+      out << centre_drift << " mm, outer spheres' sideways drift " << sideways
+          << " mm, ";
+    else
+      out << "and outer spheres' sideways drift relative to the ring ";
+    out << "both below 0.01 mm: "
         << testing::yes(centre_drift < 0.01 && sideways < 0.01) << std::endl;
     if (mu == 0)
       out << "  the ring's rotation below 0.01 mm at the outer centres: "

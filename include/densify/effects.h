@@ -94,6 +94,8 @@ namespace densify
     LinearSolverType linear_solver = LinearSolverType::cg_amg;
     /// The line search (implicit method).
     LineSearch line_search = LineSearch::residual;
+    /// The pseudo-transient continuation (implicit method).
+    Continuation continuation = Continuation::off;
     /// The mass scaling (explicit method).
     MassScaling mass_scaling = MassScaling::selective;
 

@@ -193,6 +193,12 @@ namespace densify
     std::string line_search = "residual";
     /// Stabilisation factor beta: tangent += beta E / D^2 M (tangent only).
     double stabilisation = 1e-6;
+    /// Pseudo-transient continuation: "off", "fallback" (retry a failed
+    /// increment with it) or "always".
+    std::string continuation = "fallback";
+    /// Factor of the pseudo mass (E / D^2 times the mass matrix) in the
+    /// first iteration of the continuation.
+    double pseudo_mass = 1.;
     /// The direct solvers factorize on rank 0 alone, so that runs on several
     /// ranks repeat exactly.
     bool reproducible = true;
@@ -291,6 +297,11 @@ namespace densify
     /// Declare every entry (bound to the members above) in @p prm.
     void
     declare(ParameterHandler &prm);
+
+  private:
+    /// Declare the subsections Solver and Explicit (part of declare()).
+    void
+    declare_solution_method(ParameterHandler &prm);
   };
 
   /// The Parameters::fingerprint of the entries in @p prm.

@@ -266,6 +266,8 @@ namespace densify
                  TrilinosWrappers::MPI::Vector       &du,
                  const double relative_tolerance) override;
     void
+    add_pseudo_mass(const double factor) override;
+    void
     begin_solve() override;
     unsigned int
     after_update() override;

@@ -11,9 +11,11 @@ namespace densify
 {
   Stabilisation::Stabilisation(const DoFHandler<3>       &dof_handler,
                                const std::vector<double> &alpha,
+                               const double               beta,
                                const unsigned int         degree)
     : dof_handler(dof_handler)
     , alpha(alpha)
+    , beta(beta)
     , degree(degree)
   {}
 
@@ -23,10 +25,26 @@ namespace densify
   Stabilisation::reinit(const TrilinosWrappers::SparsityPattern &pattern,
                         const Mapping<3>                        &mapping)
   {
-    matrix.reinit(pattern);
+    this->mapping = &mapping;
+    // the matrix is kept only where it is in every tangent; the continuation
+    // adds it to the tangent directly, in the iterations that use it
+    if (beta > 0)
+      {
+        matrix.reinit(pattern);
+        add_mass(matrix, 1.);
+      }
+  }
+
+
+
+  void
+  Stabilisation::add_mass(TrilinosWrappers::SparseMatrix &target,
+                          const double                    factor) const
+  {
+    Assert(mapping, ExcInternalError());
     const FiniteElement<3>              &fe = dof_handler.get_fe();
     const QGaussSimplex<3>               quadrature(degree + 1);
-    FEValues<3>                          fe_values(mapping,
+    FEValues<3>                          fe_values(*mapping,
                           fe,
                           quadrature,
                           update_values | update_JxW_values);
@@ -37,7 +55,7 @@ namespace densify
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const double a = alpha[cell->material_id()];
+          const double a = factor * alpha[cell->material_id()];
           fe_values.reinit(cell);
           cell_matrix = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
@@ -47,9 +65,9 @@ namespace densify
                                      fe_values[u].value(j, q) *
                                      fe_values.JxW(q);
           cell->get_dof_indices(dofs);
-          matrix.add(dofs, cell_matrix);
+          target.add(dofs, cell_matrix);
         }
-    matrix.compress(VectorOperation::add);
+    target.compress(VectorOperation::add);
   }
 
 
@@ -65,7 +83,20 @@ namespace densify
   void
   Stabilisation::finish_tangent(TrilinosWrappers::SparseMatrix &tangent) const
   {
-    tangent.add(1., matrix);
+    if (beta > 0)
+      tangent.add(beta, matrix);
+  }
+
+
+
+  void
+  Stabilisation::add_scaled(TrilinosWrappers::SparseMatrix &tangent,
+                            const double                    factor) const
+  {
+    if (beta > 0)
+      tangent.add(factor, matrix);
+    else
+      add_mass(tangent, factor);
   }
 
 
@@ -73,9 +104,11 @@ namespace densify
   double
   Stabilisation::force(const TrilinosWrappers::MPI::Vector &du) const
   {
+    if (beta == 0)
+      return 0.;
     TrilinosWrappers::MPI::Vector f(du.locally_owned_elements(),
                                     du.get_mpi_communicator());
     matrix.vmult(f, du);
-    return f.l1_norm();
+    return beta * f.l1_norm();
   }
 } // namespace densify

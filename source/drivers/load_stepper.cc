@@ -32,6 +32,7 @@ namespace densify
                                const double        current_time,
                                const double        time,
                                const unsigned int  step,
+                               const bool          pseudo_transient,
                                StepCounts         &counts)
   {
     const double travel = problem.set_loads(time, time - current_time);
@@ -47,7 +48,7 @@ namespace densify
       {
         // predictor margin: constraints within this increment's travel
         const auto [n_newton, n_linear] =
-          newton.solve(problem, step, aug == 0 ? travel : 0.);
+          newton.solve(problem, step, aug == 0 ? travel : 0., pseudo_transient);
         counts.newton_iterations += n_newton;
         counts.linear_iterations += n_linear;
         violation = problem.evaluate_constraints();
@@ -83,6 +84,9 @@ namespace densify
     const double step_length       = control.step_length;
     double       dt                = next_increment;
     unsigned int cutbacks_in_a_row = 0;
+    const Continuation continuation = newton.continuation();
+    // the continuation for this increment
+    bool pseudo_transient = continuation == Continuation::always;
     while (current_time < time - 1e-12 * step_length)
       {
         // the increment that reaches the end of the step ends exactly there:
@@ -99,7 +103,8 @@ namespace densify
         const unsigned int newton_before = counts.newton_iterations;
         try
           {
-            solve_increment(problem, current_time, t_end, step, counts);
+            solve_increment(
+              problem, current_time, t_end, step, pseudo_transient, counts);
           }
         catch (const std::runtime_error &e)
           {
@@ -108,6 +113,17 @@ namespace densify
             last_increment            = saved_increment;
             last_travel               = saved_travel;
             problem.restore_state();
+            if (continuation == Continuation::fallback && !pseudo_transient)
+              {
+                // the same increment again, with the continuation
+                pseudo_transient = true;
+                ++counts.continuations;
+                out << "  step " << step
+                    << ": increment retried with the pseudo-transient "
+                       "continuation ("
+                    << one_line(e.what()) << ")" << std::endl;
+                continue;
+              }
             // at most max_cutbacks halvings in a row, and never below
             // step_length / 2^max_cutbacks (a load that can only creep on in
             // ever smaller increments, e.g. beyond the friction limit, stops)
@@ -138,6 +154,7 @@ namespace densify
         current_time = t_end;
         ++counts.increments;
         cutbacks_in_a_row = 0;
+        pseudo_transient  = continuation == Continuation::always;
         // easy increments let the increment grow again, up to a full step
         if (counts.newton_iterations - newton_before <=
             control.easy_newton_iterations)

@@ -148,6 +148,8 @@ namespace densify
         if (s.cutbacks > 0)
           out << ", " << s.cutbacks << " cut-back(s), " << s.increments
               << " increments";
+        if (s.continuations > 0)
+          out << ", " << s.continuations << " continuation(s)";
         out << ")";
       }
     out << "  " << format_seconds(s.wall_seconds) << ", ~"

@@ -1,6 +1,7 @@
 // Newton's method with step limiter and line search.
 #include <densify/solvers/newton_solver.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -19,7 +20,8 @@ namespace densify
   std::pair<unsigned int, unsigned int>
   NewtonSolver::solve(NonlinearProblem  &problem,
                       const unsigned int step,
-                      const double       margin)
+                      const double       margin,
+                      const bool         pseudo_transient)
   {
     TrilinosWrappers::MPI::Vector &solution = problem.solution_vector();
     TrilinosWrappers::MPI::Vector &residual = problem.residual_vector();
@@ -46,8 +48,13 @@ namespace densify
     // safeguard acts only above 0.1, beyond eta_max here)
     constexpr double eta_max = 1e-2;
     double           eta     = eta_max;
+    // the pseudo-transient continuation's factor of the pseudo mass
+    const double       beta_start = control.continuation_start;
+    double             beta       = pseudo_transient ? beta_start : 0.;
+    const unsigned int max_iterations =
+      (pseudo_transient ? 4 : 1) * control.max_iterations;
     history.clear();
-    for (unsigned int it = 0; it <= control.max_iterations; ++it)
+    for (unsigned int it = 0; it <= max_iterations; ++it)
       {
         history.push_back(current.residual_norm);
         const double target =
@@ -57,12 +64,15 @@ namespace densify
               << std::setprecision(3) << current.residual_norm << " (target "
               << target << "), " << current.description
               << problem.iteration_details() << ", line search "
-              << std::defaultfloat << line_search_step << std::endl;
+              << std::defaultfloat << line_search_step;
+        if (control.verbose && beta > 0)
+          out << ", pseudo mass " << beta;
+        if (control.verbose)
+          out << std::endl;
         if (current.residual_norm <= target)
           return {it, linear_iterations};
-        if (it == control.max_iterations)
+        if (it == max_iterations)
           break;
-
         if (control.adaptive_linear_tolerance && it > 0)
           {
             const double ratio = current.residual_norm / history[it - 1];
@@ -74,15 +84,29 @@ namespace densify
         double phi0;
         {
           residual *= -1.;
-          increment = 0;
-          linear_iterations +=
-            problem.solve_linear(residual,
-                                 increment,
-                                 control.adaptive_linear_tolerance ?
-                                   std::max(eta, control.linear_tolerance) :
-                                   0.);
-          // R.du, with residual = -R here
-          phi0 = -(residual * increment);
+          // the continuation: the pseudo mass on the tangent; where K +
+          // beta M is not positive along the correction (a tipping mode
+          // whose negative stiffness beta M does not outweigh), more pseudo
+          // mass, else the correction would lead back to the unstable state
+          double beta_added = 0.;
+          for (unsigned int tries = 0;; ++tries)
+            {
+              if (beta > beta_added)
+                problem.add_pseudo_mass(beta - beta_added);
+              beta_added = beta;
+              increment  = 0;
+              linear_iterations +=
+                problem.solve_linear(residual,
+                                     increment,
+                                     control.adaptive_linear_tolerance ?
+                                       std::max(eta, control.linear_tolerance) :
+                                       0.);
+              // R.du, with residual = -R here
+              phi0 = -(residual * increment);
+              if (beta == 0 || phi0 < 0 || tries == 8)
+                break;
+              beta *= 4;
+            }
         }
 
         // step limiter: no entry moves by more than the limit in one
@@ -98,8 +122,9 @@ namespace densify
         // direction; then the residual search is used.
         const double r0    = current.residual_norm;
         const double s_max = (max_step > limit ? limit / max_step : 1.);
-        const bool   energy =
-          control.line_search == LineSearch::energy && phi0 < 0;
+        // the continuation takes the whole step
+        const bool energy =
+          control.line_search == LineSearch::energy && phi0 < 0 && beta == 0;
         double s = s_max, s_applied = 0;
         double lo = 0, phi_lo = phi0, hi = s_max;
         double phi_hi = std::numeric_limits<double>::infinity();
@@ -107,6 +132,7 @@ namespace densify
         NonlinearProblem::Evaluation trial;
         bool                         have_matrix = true;
         unsigned int                 n_trials    = 0;
+        double                       phi_trial   = 0.;
         for (unsigned int ls = 0;; ++ls)
           {
             solution.add(s - s_applied, increment);
@@ -129,10 +155,14 @@ namespace densify
                 trial.residual_norm = std::numeric_limits<double>::infinity();
                 failed              = true;
               }
-            const double phi = (energy && !failed) ? residual * increment : 0.;
+            const double phi =
+              ((energy || beta > 0) && !failed) ? residual * increment : 0.;
             // a NaN in the residual: a failed trial (thrown below if the
             // last)
             failed = failed || !std::isfinite(phi);
+            if (ls == 0)
+              phi_trial =
+                failed ? std::numeric_limits<double>::infinity() : phi;
             if (control.verbose)
               {
                 out << "        trial step " << s
@@ -143,7 +173,8 @@ namespace densify
               }
             if (!energy)
               {
-                if (trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
+                if ((beta > 0 && !failed) ||
+                    trial.residual_norm < (1. - 1e-4 * s) * r0 || ls == 8)
                   break;
                 // back to u, then the shorter step
                 solution.add(-s, increment);
@@ -177,6 +208,31 @@ namespace densify
                          hi - 0.01 * (hi - lo));
           }
         s = s_applied;
+        if (beta > 0)
+          {
+            // the continuation's pseudo mass follows the energy's slope
+            // along the step, R(u + du).du / R(u).du: near 1 the step was
+            // far too short (the pseudo mass dominates, e.g. while the
+            // iterate leaves an unstable state), between 0 and 1 it
+            // contracts like a convergent iteration; below 0 it overshot
+            // the minimum along du, and far below (a closing contact, or a
+            // failed trial) it was too long
+            const double ratio = (n_trials > 1 || !std::isfinite(phi_trial)) ?
+                                   -std::numeric_limits<double>::infinity() :
+                                   phi_trial / phi0;
+            beta *= ratio > 0.5 ? 0.25 :
+                    ratio >= 0  ? 0.5 :
+                    ratio >= -1 ? 1. :
+                                  4.;
+            // but no less than in proportion to the out-of-balance force
+            // relative to the forces of the scene: small pseudo masses far
+            // from equilibrium let soft modes take steps that close many
+            // contacts at once
+            beta = std::max(beta,
+                            beta_start * trial.residual_norm /
+                              std::max(current.reference_norm,
+                                       std::numeric_limits<double>::min()));
+          }
         if (!std::isfinite(trial.residual_norm))
           throw std::runtime_error(
             "step " + std::to_string(step) +
@@ -197,9 +253,11 @@ namespace densify
         line_search_step = s;
       }
     std::ostringstream msg;
-    msg << "step " << step << ": Newton did not converge in "
-        << control.max_iterations << " iterations (residual " << std::scientific
-        << std::setprecision(2) << current.residual_norm << " N, target "
+    msg << "step " << step << ": Newton did not converge in " << max_iterations
+        << (pseudo_transient ? " iterations with the continuation" :
+                               " iterations")
+        << " (residual " << std::scientific << std::setprecision(2)
+        << current.residual_norm << " N, target "
         << std::max(tol * current.reference_norm, control.floor)
         << " N); try more steps (Time stepping/Number of steps) or raise "
            "Solver/Maximum Newton iterations";

@@ -20,9 +20,12 @@ namespace densify
   class Stabilisation : public ForceTerm
   {
   public:
-    /// @p alpha the factor beta E_p / D_p^2 of each particle (MPa/mm^2).
+    /// @p alpha the factor E_p / D_p^2 of each particle (MPa/mm^2), @p beta
+    /// the factor of the matrix in every tangent (0: only the
+    /// pseudo-transient continuation uses it).
     Stabilisation(const DoFHandler<3>       &dof_handler,
                   const std::vector<double> &alpha,
+                  const double               beta,
                   const unsigned int         degree);
 
     std::string
@@ -45,14 +48,29 @@ namespace densify
     void
     finish_tangent(TrilinosWrappers::SparseMatrix &tangent) const override;
 
-    /// l1 norm of the matrix times the Newton correction @p du (N).
+    /// l1 norm of beta times the matrix times the Newton correction @p du
+    /// (N).
     double
     force(const TrilinosWrappers::MPI::Vector &du) const;
 
+    /// Add @p factor times the matrix (E_p / D_p^2 times the mass matrix)
+    /// to @p tangent: the pseudo mass of the pseudo-transient continuation.
+    void
+    add_scaled(TrilinosWrappers::SparseMatrix &tangent,
+               const double                    factor) const;
+
   private:
-    const DoFHandler<3>           &dof_handler;
-    const std::vector<double>      alpha;
-    const unsigned int             degree;
+    /// Add @p factor times E_p / D_p^2 times the mass matrix to @p target.
+    void
+    add_mass(TrilinosWrappers::SparseMatrix &target, const double factor) const;
+
+    const DoFHandler<3>      &dof_handler;
+    const std::vector<double> alpha;
+    const double              beta;
+    const unsigned int        degree;
+    /// The mapping of the last reinit().
+    const Mapping<3> *mapping = nullptr;
+    /// beta E_p / D_p^2 times the mass matrix; made only if beta > 0.
     TrilinosWrappers::SparseMatrix matrix;
   };
 } // namespace densify

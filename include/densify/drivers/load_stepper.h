@@ -74,6 +74,8 @@ namespace densify
   {
     unsigned int newton_iterations = 0, linear_iterations = 0,
                  augmentations = 0, cutbacks = 0, increments = 0;
+    /// Increments retried with the pseudo-transient continuation.
+    unsigned int continuations = 0;
   };
 
   /**
@@ -83,6 +85,9 @@ namespace densify
    * multipliers until the constraint violation is below the tolerance. A
    * failed increment is rolled back and retried with half the size (at most
    * max_cutbacks times in a row); increments grow again after easy ones.
+   * With Continuation::fallback a failed increment is first retried at the
+   * same size with the pseudo-transient continuation; with
+   * Continuation::always every increment uses it.
    */
   class LoadStepper
   {
@@ -118,13 +123,15 @@ namespace densify
     double                        last_travel = 0.;
 
   private:
-    /// One increment to @p time: predictor, then Newton inside the
+    /// One increment to @p time: predictor, then Newton (with the
+    /// pseudo-transient continuation if @p pseudo_transient) inside the
     /// multiplier updates. Throws std::runtime_error on failure.
     void
     solve_increment(IncrementalProblem &problem,
                     const double        current_time,
                     const double        time,
                     const unsigned int  step,
+                    const bool          pseudo_transient,
                     StepCounts         &counts);
 
     const LoadStepperControl control;

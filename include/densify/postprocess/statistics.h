@@ -75,6 +75,9 @@ namespace densify
     double kinetic_energy = 0., internal_work = 0., friction_work = 0.,
            damping_work = 0., contact_energy = 0., external_work = 0.,
            energy_balance = 0., multiplier_work = 0.;
+    /// Increments retried with the pseudo-transient continuation
+    /// (Solver/Pseudo-transient continuation = fallback).
+    unsigned int continuations = 0;
   };
 
   /**

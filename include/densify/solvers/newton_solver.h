@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,18 @@ namespace densify
     /// Find the step where the energy's derivative along the direction
     /// has fallen to half.
     energy
+  };
+
+  /// Pseudo-transient continuation (Solver/Pseudo-transient continuation).
+  enum class Continuation
+  {
+    /// Newton with its line search only.
+    off,
+    /// Retry an increment whose Newton solve failed with the continuation,
+    /// before cutting it back.
+    fallback,
+    /// Every Newton solve with the continuation.
+    always
   };
 
   /**
@@ -92,6 +105,19 @@ namespace densify
       return 0;
     }
 
+    /**
+     * Add @p factor times the problem's pseudo mass (a positive definite
+     * matrix, the same in every call) to the tangent of the last assembly:
+     * the pseudo-transient continuation. Only problems that give a pseudo
+     * mass are solved with the continuation.
+     */
+    virtual void
+    add_pseudo_mass(const double factor)
+    {
+      (void)factor;
+      throw std::logic_error("this problem has no pseudo mass");
+    }
+
     /// More of the state for the verbose log of an iteration.
     virtual std::string
     iteration_details()
@@ -116,6 +142,10 @@ namespace densify
     double linear_tolerance          = 1e-8;
     /// Largest change of any entry of u in one iteration (step limiter).
     double step_limit = std::numeric_limits<double>::max();
+    /// The pseudo-transient continuation: when it is used, and the factor
+    /// of the pseudo mass in its first iteration.
+    Continuation continuation       = Continuation::off;
+    double       continuation_start = 1.;
     /// Print every iteration.
     bool verbose = false;
   };
@@ -138,11 +168,33 @@ namespace densify
      * uses the predictor margin @p margin. Returns the numbers of Newton and
      * linear iterations. Throws std::runtime_error (naming @p step) if it
      * does not converge or the residual becomes NaN.
+     *
+     * With @p pseudo_transient, the pseudo-transient continuation of Kelley
+     * and Keyes (1998): each correction solves (K + beta M) du = -R with the
+     * problem's pseudo mass M and takes the whole step (up to the step
+     * limiter), so the iterates follow an overdamped motion towards a
+     * stable equilibrium rather than the nearest root. beta starts at
+     * NewtonControl::continuation_start; it is raised fourfold while
+     * R.du >= 0 (K + beta M not positive along du); after each step it
+     * follows the energy's slope along the step, r = R(u + du).du / R(u).du
+     * (r > 0.5: x0.25, 0 <= r <= 0.5: x0.5, -1 <= r < 0: unchanged, else
+     * x4), and it never falls below its start times |R| over the scene's
+     * reference force, so it vanishes as R does. The residual is never
+     * changed, so the converged state solves R(u) = 0 as without the
+     * continuation. It gets four times the iterations.
      */
     std::pair<unsigned int, unsigned int>
     solve(NonlinearProblem  &problem,
           const unsigned int step,
-          const double       margin);
+          const double       margin,
+          const bool         pseudo_transient = false);
+
+    /// When the pseudo-transient continuation is used.
+    Continuation
+    continuation() const
+    {
+      return control.continuation;
+    }
 
     /// l2 norm of the residual after each iteration of the last solve,
     /// starting with the initial residual.
