@@ -14,6 +14,8 @@ and each run's statistics.csv. STROKES in mm, ','-separated (default
 in the punch displacement. KE/IE: the largest ratio of kinetic energy to
 internal work (elastic energy + plastic work) from 10 % of the stroke on
 (before it the internal work is close to zero) and the ratio at the end.
+Wall time: the run's own (wall_seconds of its last station), without the
+time a run waited for a lock.
 A run that stopped early shows its forces up to where it got and its error
 line below the table.
 """
@@ -92,7 +94,7 @@ def main():
     print("|---" * (len(strokes) + 5) + "|")
     print("| quasi-static (implicit) | " +
           " | ".join(f"{f:,.1f}" for f in f_qs) +
-          f" | – | – | – | {reference[0]['seconds']:.0f} s |")
+          f" | – | – | – | {qs['wall_seconds'][-1]:.0f} s |")
     notes = []
     for r in speeds:
         st = read_statistics(r["dir"])
@@ -107,17 +109,18 @@ def main():
         cells = []
         for s, f0 in zip(strokes, f_qs):
             f = force_at(st, s) if st else float("nan")
-            cells.append("–" if np.isnan(f) else f"{f:,.1f} ({100 * (f / f0 - 1):+.1f} %)")
+            cells.append("–" if np.isnan(f) else f"{f:,.1f} ({100 * (f / f0 - 1):+.1f} %)".replace("-", "−"))
         if st:
             ratio = st["kinetic_energy"] / np.maximum(st["internal_work"], 1e-300)
             late = st["punch_displacement"] >= 0.1 * max(strokes)
             ke_max = f"{100 * ratio[late].max():.2g} %" if late.any() else "–"
             ke_end = f"{100 * ratio[-1]:.2g} %"
             steps = f"{int(st['explicit_steps'][-1]):,}"
+            wall = f"{st['wall_seconds'][-1]:.0f} s"
         else:
-            ke_max = ke_end = steps = "–"
+            ke_max = ke_end = steps = wall = "–"
         print(f"| {label} | " + " | ".join(cells) +
-              f" | {ke_max} | {ke_end} | {steps} | {r['seconds']:.0f} s |")
+              f" | {ke_max} | {ke_end} | {steps} | {wall} |")
     for n in notes:
         print(f"\n\\* {n}")
 
