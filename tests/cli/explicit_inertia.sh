@@ -3,8 +3,10 @@
 # seven J2 tin spheres, friction 0.2) shrunk to 0.24 mm of stroke on a
 # 0.8 mm mesh, pressed at 2 m/s and at 20 m/s, against the quasi-static
 # force of the implicit method on the same shrunk scene
-# (prm/single_layer_sn_light.prm). At the end of the stroke:
-# - at 2 m/s the upper punch force is within 3 % of the quasi-static one;
+# (prm/single_layer_sn_light.prm). The upper punch force, averaged over the
+# last four of the 8 stations (0.15 to 0.24 mm; at 20 m/s the force rings
+# from station to station):
+# - at 2 m/s it is within 3 % of the quasi-static one;
 # - at 20 m/s it is larger by more than 20 %, and by 10 points more than the
 #   difference at 2 m/s;
 # - both runs report kinetic energy (every station of statistics.csv and
@@ -41,13 +43,14 @@ for name, rs in (("2 m/s", slow), ("20 m/s", fast)):
     assert all(math.isfinite(float(v)) for r in rs for v in r.values()), f"{name}: NaN"
     assert all(float(r["kinetic_energy"]) > 0 for r in rs), f"{name}: no kinetic energy"
     assert float(rs[-1]["added_mass"]) == 0, f"{name}: mass scaled"
-f0 = F(qs[-1])
-d_slow, d_fast = F(slow[-1]) / f0 - 1, F(fast[-1]) / f0 - 1
-print(f"quasi-static F_upper {f0:.2f} N")
-for name, r, d in (("2 m/s", slow[-1], d_slow), ("20 m/s", fast[-1], d_fast)):
-    print(f"{name}: F_upper {F(r):.2f} N ({100 * d:+.2f} %), F_lower "
-          f"{float(r['lower_punch_force']):.2f} N, KE/IE {100 * ke_ie(r):.3g} %, "
-          f"{r['explicit_steps']} steps")
+mean = lambda rs: sum(F(r) for r in rs[4:]) / len(rs[4:])
+f0 = mean(qs)
+d_slow, d_fast = mean(slow) / f0 - 1, mean(fast) / f0 - 1
+print(f"quasi-static: mean F_upper over 0.15-0.24 mm {f0:.2f} N")
+for name, rs, d in (("2 m/s", slow, d_slow), ("20 m/s", fast, d_fast)):
+    print(f"{name}: mean F_upper {mean(rs):.2f} N ({100 * d:+.2f} %), at the end "
+          f"{F(rs[-1]):.2f} N, F_lower {float(rs[-1]['lower_punch_force']):.2f} N, "
+          f"KE/IE {100 * ke_ie(rs[-1]):.3g} %, {rs[-1]['explicit_steps']} steps")
 # 2 m/s: the inertia is small, of the order of rho v^2 / sigma_y = 7290 kg/m^3
 # (2 m/s)^2 / 31 MPa = 1e-3; what is left is the soft explicit contact
 # penalty (a contact penetrates by p / eps, about -1 to -2 % of the force,
@@ -56,7 +59,7 @@ for name, r, d in (("2 m/s", slow[-1], d_slow), ("20 m/s", fast[-1], d_fast)):
 assert abs(d_slow) < 0.03, "2 m/s: not quasi-static"
 # 20 m/s: the punch gives the layer (4.2e-4 kg) about half its speed within
 # the stroke's 12 us: m v / 2 / (stroke / v) = m v^2 / (2 stroke) = 350 N,
-# as much as the quasi-static force (about 270 N at 0.24 mm on this mesh),
+# as much as the quasi-static force (about 250 N on this mesh),
 # and rho v^2 / sigma_y = 0.09 is a hundred times that at 2 m/s. A rise of
 # more than 20 %, and 10 points more than the difference at 2 m/s, is what
 # inertia must add at the least.
