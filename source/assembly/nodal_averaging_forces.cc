@@ -24,37 +24,53 @@ namespace densify
     //    their vertex averages
     j_bar.assign(patches.size(), 0.);
     inverse_transpose.resize(cells.size());
+    cell_F.resize(cells.size());
+    cell_j.resize(cells.size());
+    cell_dj.resize(cells.size());
+    // the weights V_f / V_a of the patches' cells, fixed with the mesh
+    if (slot_weight.empty())
+      {
+        slot_start.assign(1, 0);
+        for (const Patch &patch : patches)
+          {
+            for (const unsigned int f : patch.cells)
+              slot_weight.push_back(cells[f].volume / patch.volume);
+            slot_start.push_back(slot_weight.size());
+          }
+      }
     for (const unsigned int e : needed_cells)
       {
-        const Cell  &c      = cells[e];
-        CellState   &s      = state[e];
-        const bool   finite = materials[c.material]->finite_strain();
-        Tensor<2, 3> F      = unit_symmetric_tensor<3>();
+        const Cell             &c      = cells[e];
+        const bool              finite = materials[c.material]->finite_strain();
+        std::array<double, 12> &dj     = cell_dj[e];
+        Tensor<2, 3>            F      = unit_symmetric_tensor<3>();
         for (unsigned int i = 0; i < 12; ++i)
           F[c.component[i]] += solution[c.dofs[i]] * c.grad[i];
-        s.F = F;
+        cell_F[e] = F;
+        double j;
         if (finite)
           {
-            s.j = determinant(s.F);
-            if (!(s.j > 0.))
-              return "nodal averaging: det F = " + std::to_string(s.j) +
+            j = determinant(F);
+            if (!(j > 0.))
+              return "nodal averaging: det F = " + std::to_string(j) +
                      " <= 0 (inverted element)";
-            const Tensor<2, 3> F_inv_T = transpose(invert(s.F));
+            const Tensor<2, 3> F_inv_T = transpose(invert(F));
             inverse_transpose[e]       = F_inv_T;
             for (unsigned int i = 0; i < 12; ++i)
               {
                 const Tensor<1, 3> h = F_inv_T * c.grad[i];
-                s.dj[i]              = s.j * h[c.component[i]];
+                dj[i]                = j * h[c.component[i]];
               }
           }
         else
           {
-            s.j = trace(s.F) - 2.;
+            j = trace(F) - 2.;
             for (unsigned int i = 0; i < 12; ++i)
-              s.dj[i] = c.grad[i][c.component[i]];
+              dj[i] = c.grad[i][c.component[i]];
           }
+        cell_j[e] = j;
         for (unsigned int v = 0; v < 4; ++v)
-          j_bar[c.vertex[v]] += c.volume * s.j;
+          j_bar[c.vertex[v]] += c.volume * j;
       }
     for (unsigned int a = 0; a < patches.size(); ++a)
       if (patches[a].volume > 0.)
@@ -71,12 +87,14 @@ namespace densify
         const Cell &c = cells[e];
         if (!c.owned)
           continue;
-        const CellState &s        = state[e];
-        const Material  &material = *materials[c.material];
-        const bool       finite   = material.finite_strain();
-        const double     w        = c.volume / 4.;
+        const Tensor<2, 3>           &F        = cell_F[e];
+        const double                  j        = cell_j[e];
+        const std::array<double, 12> &dj       = cell_dj[e];
+        const Material               &material = *materials[c.material];
+        const bool                    finite   = material.finite_strain();
+        const double                  w        = c.volume / 4.;
         for (unsigned int i = 0; i < 12; ++i)
-          t[i] = (finite ? s.dj[i] / s.j : s.dj[i]);
+          t[i] = (finite ? dj[i] / j : dj[i]);
         cell_residual.fill(0.);
         // one return mapping per cell: the deviator of the first corner's
         // Kirchhoff stress, shared by all four (see assemble())
@@ -88,8 +106,8 @@ namespace densify
             const unsigned int a  = c.vertex[v];
             double             sc = 1.;
             const Tensor<2, 3> F_bar =
-              fbar_deformation(s.F, j_bar[a], finite, &sc);
-            const Tensor<2, 3> &N = finite ? s.F : I;
+              fbar_deformation(F, j_bar[a], finite, &sc);
+            const Tensor<2, 3> &N = finite ? F : I;
             const double        D = finite ? j_bar[a] : 1.;
             const std::size_t   k = std::size_t(e) * 4 + v;
             if (shared && v > 0)
@@ -142,12 +160,13 @@ namespace densify
           continue;
         const unsigned int n = patch.dofs.size();
         patch_work.assign(n, 0.);
+        const double *c = &slot_weight[slot_start[a]];
         for (unsigned int slot = 0; slot < patch.cells.size(); ++slot)
           {
-            const unsigned int f   = patch.cells[slot];
-            const double       c_f = cells[f].volume / patch.volume;
+            const std::array<double, 12>       &dj = cell_dj[patch.cells[slot]];
+            const std::array<unsigned int, 12> &position = patch.position[slot];
             for (unsigned int i = 0; i < 12; ++i)
-              patch_work[patch.position[slot][i]] += c_f * state[f].dj[i];
+              patch_work[position[i]] += c[slot] * dj[i];
           }
         for (unsigned int i = 0; i < n; ++i)
           residual.add(patch.dofs[i], S[a] * patch_work[i]);

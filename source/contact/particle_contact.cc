@@ -344,7 +344,8 @@ namespace densify
                            const unsigned int           m,
                            const std::vector<Point<3>> &vertices,
                            const double                 band,
-                           double                      &distance_squared) const
+                           double                      &distance_squared,
+                           const bool                   with_normal) const
   {
     const Facet            &facet = facets[m];
     std::array<Point<3>, 4> c;
@@ -372,11 +373,25 @@ namespace densify
     const Point<3> y =
       result.bary[0] * c[0] + result.bary[1] * c[1] + result.bary[2] * c[2];
     distance_squared = (x - y).norm_square();
-    Tensor<1, 3> n   = cross_product_3d(c[1] - c[0], c[2] - c[0]);
+    if (with_normal)
+      result.normal = outward_normal(m, vertices);
+    return result;
+  }
+
+
+
+  Tensor<1, 3>
+  ParticleContact::outward_normal(const unsigned int           m,
+                                  const std::vector<Point<3>> &vertices) const
+  {
+    const Facet            &facet = facets[m];
+    std::array<Point<3>, 4> c;
+    for (unsigned int k = 0; k < 4; ++k)
+      c[k] = vertices[facet.vertex[k]];
+    Tensor<1, 3> n = cross_product_3d(c[1] - c[0], c[2] - c[0]);
     if (n * (c[3] - c[0]) > 0)
       n = -n;
-    result.normal = n / n.norm();
-    return result;
+    return n / n.norm();
   }
 
 
@@ -517,18 +532,20 @@ namespace densify
                     project(x_s, kept, x_now, projection_band, best_distance);
                 else
                   {
-                    // the closest candidate facet
+                    // the closest candidate facet (its normal once found)
                     for (unsigned int c = begin; c < end; ++c)
                       {
                         double           d2;
                         const Projection pr =
-                          project(x_s, candidates[c], x_now, 0., d2);
+                          project(x_s, candidates[c], x_now, 0., d2, false);
                         if (d2 < best_distance)
                           {
                             best_distance = d2;
                             best          = pr;
                           }
                       }
+                    if (best.facet != numbers::invalid_unsigned_int)
+                      best.normal = outward_normal(best.facet, x_now);
                     const unsigned int old = assigned[idx];
                     if (out.new_assignment != nullptr &&
                         old != numbers::invalid_unsigned_int &&

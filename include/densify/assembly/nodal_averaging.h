@@ -172,8 +172,14 @@ namespace densify
     std::vector<double>    U, U_prime;
     std::vector<double>    j_bar, S, beta;
     std::vector<CellState> state;
-    /// F^{-T} per cell (finite strain), made by forces().
-    std::vector<Tensor<2, 3>> inverse_transpose;
+    /// The kinematics of forces() per cell, in compact arrays: F, F^{-T}
+    /// (finite strain), the volume measure j and d j / d u_i.
+    std::vector<Tensor<2, 3>>           cell_F, inverse_transpose;
+    std::vector<double>                 cell_j;
+    std::vector<std::array<double, 12>> cell_dj;
+    /// Per patch cell (from slot_start[a] on for patch a): V_f / V_a.
+    std::vector<double>       slot_weight;
+    std::vector<unsigned int> slot_start;
     /// Work array of forces(): d j_a / du on the DoFs of one patch.
     std::vector<double> patch_work;
     /// The cells whose kinematics this rank needs: those in the patch of a

@@ -264,13 +264,21 @@ namespace densify
 
     /// Closest point to @p x of the facet @p m in the current configuration
     /// @p vertices, enlarged about its centroid so that the barycentric
-    /// coordinates reach down to -@p band (0: the facet itself).
+    /// coordinates reach down to -@p band (0: the facet itself). Without
+    /// @p with_normal the projection's normal is left zero.
     Projection
     project(const Point<3>              &x,
             const unsigned int           m,
             const std::vector<Point<3>> &vertices,
             const double                 band,
-            double                      &distance_squared) const;
+            double                      &distance_squared,
+            const bool                   with_normal = true) const;
+
+    /// The outward unit normal of facet @p m in the configuration
+    /// @p vertices.
+    Tensor<1, 3>
+    outward_normal(const unsigned int           m,
+                   const std::vector<Point<3>> &vertices) const;
 
     /// How far beyond its edges a slave point keeps its master facet, in
     /// barycentric coordinates (update_projections()).
