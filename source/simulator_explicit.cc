@@ -173,7 +173,13 @@ namespace densify
             search_solution = solution;
           }
       }
-    const AssemblyContext c = context();
+    // the values read once into plain arrays for the element loops
+    explicit_values.gather(solution_ghosted);
+    explicit_committed.gather(committed_ghosted);
+    AssemblyContext c  = context();
+    c.values           = &explicit_values;
+    c.committed_values = &explicit_committed;
+    c.plain_forces     = &explicit_forces;
     {
       TimerOutput::Scope ti(timer, "Explicit: internal forces");
       internal = 0.;
@@ -202,8 +208,21 @@ namespace densify
       }
     // the contact terms accept each evaluation (with the integral action of
     // Explicit/Contact multiplier steps)
+    // the terms with a plain force path add into one array, passed into
+    // external before any other term adds to it, so that every entry sums
+    // its contributions in the order of the terms
+    bool open = false;
     for (ForceTerm *term : other_terms)
-      term->assemble(c, external, nullptr);
+      {
+        if (term->adds_plain_forces() && !open)
+          explicit_forces.start(external);
+        else if (!term->adds_plain_forces() && open)
+          explicit_forces.finish(external);
+        open = term->adds_plain_forces();
+        term->assemble(c, external, nullptr);
+      }
+    if (open)
+      explicit_forces.finish(external);
     external.compress(VectorOperation::add);
     const ContactResults contact = contact_results();
 

@@ -16,6 +16,7 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/body_force.h>
 #include <densify/assembly/continuum.h>
 #include <densify/assembly/lumped_mass.h>
@@ -472,6 +473,10 @@ namespace densify
     /// Body force vector of the last evaluation and the displacement then
     /// (body work); the displacement at the last contact search.
     TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;
+    /// The explicit step's plain arrays: the solution's and the committed
+    /// solution's values, and the forces on their way into a residual.
+    AllValues   explicit_values, explicit_committed;
+    LocalForces explicit_forces;
     /// The explicit run's last station account.
     ExplicitDynamics::Account         explicit_account;
     std::vector<StepStatistics>       step_statistics;

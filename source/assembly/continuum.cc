@@ -7,6 +7,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/continuum.h>
 #include <densify/assembly/nodal_averaging.h>
 
@@ -89,7 +90,22 @@ namespace densify
 
     std::string material_failure;
     // with the locking remedy, its own assembly replaces the cell loop
-    if (nodal_averaging)
+    // explicit dynamics: the F-bar's force path on plain arrays
+    const bool plain = nodal_averaging && tangent == nullptr &&
+                       context.explicit_dynamics && context.values != nullptr &&
+                       context.plain_forces != nullptr;
+    if (plain)
+      {
+        context.plain_forces->start(forces);
+        material_failure =
+          nodal_averaging->forces(*context.values,
+                                  materials,
+                                  history ? &committed_history : nullptr,
+                                  history ? &trial_history : nullptr,
+                                  *context.plain_forces);
+        context.plain_forces->finish(forces);
+      }
+    else if (nodal_averaging)
       material_failure =
         nodal_averaging->assemble(solution,
                                   materials,

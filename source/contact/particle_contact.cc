@@ -8,6 +8,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <densify/contact/geometric_tangent.h>
 #include <densify/contact/particle_contact.h>
 
 #include <algorithm>
@@ -68,120 +69,6 @@ namespace densify
       const double v = vb * denominator, w = vc * denominator;
       return {{1 - v - w, v, w}};
     }
-    /**
-     * Add to @p pair_matrix (slave DoFs, then master DoFs) the tangent terms
-     * of the traction @p T = p n + t that come from the motion of the master
-     * facet with corners @p c (current positions): the rotation of the
-     * normal @p n, which turns the pressure @p p, and, if @p sliding, the
-     * motion of the projection point (barycentric @p bary on the flat facet,
-     * @p x_s_minus_y from there to the slave point), which moves @p T to
-     * other master shape functions. For the flat facet y = c0 + b1 e1 + b2 e2
-     * the projection condition (x_s - y) . e_a = 0 gives
-     * M db = e_a . (dx_s - b_k dc_k) + (x_s - y) . de_a with the metric
-     * M = e_a . e_b.
-     * @p psi: slave shape functions and minus the master ones at the
-     * projection; @p corner[i]: which facet corner the master DoF i moves
-     * (-1: none); @p master_grad[i]: gradient of the master shape function i
-     * in reference coordinates; @p ref_corner: the corners in reference
-     * coordinates of the master cell. For P2 the master point
-     * x_m (given by the master cell's shape functions) lies off the flat facet
-     * through the corners: the gap g = (x_s - x_m) . n then also changes by
-     * @p x_s_minus_x_m . dn - n . (@p dx_m_dxi dxi), which the pressure
-     * p = lambda - @p eps g follows (both vanish for P1).
-     * With friction (@p friction not null), the tangential traction t
-     * follows the same motion: the tangent plane P = I - n n turns with n,
-     * and the slip increment delta = du_s - du_m(xi) changes with the
-     * projection point by -(@p grad_delta_m) dxi, with @p grad_delta_m the
-     * gradient of the master's displacement increment by the master cell's
-     * reference coordinates (FrictionTerms, friction_traction_change()).
-     */
-    void
-    add_geometric_tangent(const std::array<Point<3>, 3>   &c,
-                          const Tensor<1, 3>              &n,
-                          const Tensor<1, 3>              &x_s_minus_y,
-                          const std::array<double, 3>     &bary,
-                          const double                     p,
-                          const Tensor<1, 3>              &T,
-                          const bool                       sliding,
-                          const std::vector<Tensor<1, 3>> &psi,
-                          const std::vector<int>          &corner,
-                          const std::vector<unsigned int> &component,
-                          const std::vector<Tensor<1, 3>> &master_grad,
-                          const std::array<Point<3>, 3>   &ref_corner,
-                          const double                     eps,
-                          const Tensor<1, 3>              &x_s_minus_x_m,
-                          const Tensor<2, 3>              &dx_m_dxi,
-                          const double                     factor,
-                          const FrictionTerms             *friction,
-                          const Tensor<2, 3>              &grad_delta_m,
-                          FullMatrix<double>              &pair_matrix)
-    {
-      const unsigned int n_dofs = component.size();
-      const Tensor<1, 3> e1 = c[1] - c[0], e2 = c[2] - c[0];
-      const Tensor<1, 3> normal_dir = cross_product_3d(e1, e2);
-      const double       length     = normal_dir.norm();
-      // n = sign c/|c|: dn = sign (I - n n) dc / |c|
-      const double       sign = (normal_dir * n > 0) ? 1. : -1.;
-      const Tensor<2, 3> P_n = unit_symmetric_tensor<3>() - outer_product(n, n);
-      const double       m11 = e1 * e1, m12 = e1 * e2, m22 = e2 * e2;
-      const double       det = m11 * m22 - m12 * m12;
-      std::vector<Tensor<1, 3>> dn(2 * n_dofs), dxi(2 * n_dofs);
-      std::vector<double>       dg(2 * n_dofs);
-      for (unsigned int j = 0; j < 2 * n_dofs; ++j)
-        {
-          // the motion of the slave point relative to the flat facet's
-          // point at fixed b: the slave's shape functions, minus b_a for the
-          // corner DoFs (for P1 psi itself)
-          const int    a = j < n_dofs ? -1 : corner[j - n_dofs];
-          Tensor<1, 3> relative;
-          if (j < n_dofs)
-            relative = psi[j];
-          else if (a >= 0)
-            relative[component[j - n_dofs]] = -bary[a];
-          double r1 = e1 * relative, r2 = e2 * relative;
-          if (a >= 0)
-            {
-              Tensor<1, 3> e_d;
-              e_d[component[j - n_dofs]] = 1.;
-              const Tensor<1, 3> dc =
-                a == 1 ? cross_product_3d(e_d, e2) :
-                a == 2 ? cross_product_3d(e1, e_d) :
-                         -cross_product_3d(e_d, e2) - cross_product_3d(e1, e_d);
-              dn[j] = sign / length * (P_n * dc);
-              // de1 = dc1 - dc0, de2 = dc2 - dc0
-              const double n_e = x_s_minus_y * e_d;
-              r1 += a == 1 ? n_e : (a == 0 ? -n_e : 0.);
-              r2 += a == 2 ? n_e : (a == 0 ? -n_e : 0.);
-            }
-          if (sliding)
-            {
-              const double db1 = (m22 * r1 - m12 * r2) / det,
-                           db2 = (m11 * r2 - m12 * r1) / det;
-              dxi[j]           = db1 * (ref_corner[1] - ref_corner[0]) +
-                       db2 * (ref_corner[2] - ref_corner[0]);
-            }
-          dg[j] = x_s_minus_x_m * dn[j] - n * (dx_m_dxi * dxi[j]);
-        }
-      // the friction traction's change dt[j] by the same motion
-      std::vector<Tensor<1, 3>> dt(friction != nullptr ? 2 * n_dofs : 0);
-      if (friction != nullptr)
-        for (unsigned int j = 0; j < 2 * n_dofs; ++j)
-          dt[j] = friction_traction_change(
-            *friction, n, dn[j], -(grad_delta_m * dxi[j]), -eps * dg[j]);
-      for (unsigned int i = 0; i < 2 * n_dofs; ++i)
-        for (unsigned int j = 0; j < 2 * n_dofs; ++j)
-          {
-            // dp = -eps dg
-            double value = p * (psi[i] * dn[j]) - eps * (n * psi[i]) * dg[j];
-            if (friction != nullptr)
-              value += psi[i] * dt[j];
-            // psi_i = -N_i(xi) e_k on the master: d psi_i = -(grad N_i . dxi)
-            if (i >= n_dofs)
-              value -=
-                T[component[i - n_dofs]] * (master_grad[i - n_dofs] * dxi[j]);
-            pair_matrix(i, j) -= factor * value;
-          }
-    }
   } // namespace
 
 
@@ -219,6 +106,10 @@ namespace densify
             for (unsigned int v = 0; v < 4; ++v)
               if ((used & (1u << v)) == 0)
                 facet.local_vertex[3] = v;
+            for (unsigned int k = 0; k < 4; ++k)
+              facet.vertex[k] = cell->vertex_index(facet.local_vertex[k]);
+            for (unsigned int k = 0; k < 3; ++k)
+              facet.position[k] = cell->vertex(facet.local_vertex[k]);
             by_particle[facet.particle].push_back(facet);
           }
     facets.clear();
@@ -232,6 +123,34 @@ namespace densify
     for (unsigned int m = 0; m < facets.size(); ++m)
       if (facets[m].cell->is_locally_owned())
         slave_faces.push_back(m);
+    const unsigned int n_dofs = dof_handler.get_fe().n_dofs_per_cell();
+    facet_dofs.resize(facets.size() * n_dofs);
+    surface_vertices.clear();
+    std::vector<bool> done(dof_handler.get_triangulation().n_vertices(), false);
+    std::vector<types::global_dof_index> cell_dofs(n_dofs);
+    for (unsigned int m = 0; m < facets.size(); ++m)
+      {
+        const Facet &facet = facets[m];
+        facet.cell->get_dof_indices(cell_dofs);
+        std::copy(cell_dofs.begin(),
+                  cell_dofs.end(),
+                  facet_dofs.begin() + m * n_dofs);
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            const unsigned int v = facet.local_vertex[k];
+            const unsigned int i = facet.cell->vertex_index(v);
+            if (done[i])
+              continue;
+            done[i] = true;
+            SurfaceVertex vertex;
+            vertex.index    = i;
+            vertex.position = facet.cell->vertex(v);
+            for (unsigned int d = 0; d < 3; ++d)
+              vertex.dofs[d] = facet.cell->vertex_dof_index(v, d);
+            surface_vertices.push_back(vertex);
+          }
+      }
+    tables = FaceTables();
     candidate_start.assign(slave_faces.size() + 1, 0);
     candidates.clear();
     couplings.clear();
@@ -266,6 +185,22 @@ namespace densify
           for (unsigned int d = 0; d < 3; ++d)
             x[i][d] += solution(facet.cell->vertex_dof_index(v, d));
         }
+    return x;
+  }
+
+
+
+  std::vector<Point<3>>
+  ParticleContact::current_vertices(const AllValues &values) const
+  {
+    std::vector<Point<3>> x(dof_handler->get_triangulation().n_vertices());
+    for (const SurfaceVertex &vertex : surface_vertices)
+      {
+        Point<3> &y = x[vertex.index];
+        y           = vertex.position;
+        for (unsigned int d = 0; d < 3; ++d)
+          y[d] += values[vertex.dofs[d]];
+      }
     return x;
   }
 
@@ -409,12 +344,13 @@ namespace densify
                            const unsigned int           m,
                            const std::vector<Point<3>> &vertices,
                            const double                 band,
-                           double                      &distance_squared) const
+                           double                      &distance_squared,
+                           const bool                   with_normal) const
   {
     const Facet            &facet = facets[m];
     std::array<Point<3>, 4> c;
     for (unsigned int k = 0; k < 4; ++k)
-      c[k] = vertices[facet.cell->vertex_index(facet.local_vertex[k])];
+      c[k] = vertices[facet.vertex[k]];
     Projection result;
     result.facet = m;
     if (band == 0.)
@@ -437,11 +373,25 @@ namespace densify
     const Point<3> y =
       result.bary[0] * c[0] + result.bary[1] * c[1] + result.bary[2] * c[2];
     distance_squared = (x - y).norm_square();
-    Tensor<1, 3> n   = cross_product_3d(c[1] - c[0], c[2] - c[0]);
+    if (with_normal)
+      result.normal = outward_normal(m, vertices);
+    return result;
+  }
+
+
+
+  Tensor<1, 3>
+  ParticleContact::outward_normal(const unsigned int           m,
+                                  const std::vector<Point<3>> &vertices) const
+  {
+    const Facet            &facet = facets[m];
+    std::array<Point<3>, 4> c;
+    for (unsigned int k = 0; k < 4; ++k)
+      c[k] = vertices[facet.vertex[k]];
+    Tensor<1, 3> n = cross_product_3d(c[1] - c[0], c[2] - c[0]);
     if (n * (c[3] - c[0]) > 0)
       n = -n;
-    result.normal = n / n.norm();
-    return result;
+    return n / n.norm();
   }
 
 
@@ -458,14 +408,28 @@ namespace densify
     const bool friction_on = friction.mu > 0.;
     Assert(!friction_on || committed_solution != nullptr,
            ExcMessage("friction needs set_committed_solution()"));
-    const FiniteElement<3>          &fe     = dof_handler->get_fe();
-    const unsigned int               n_q    = face_quadrature.size();
-    const unsigned int               n_dofs = fe.n_dofs_per_cell();
-    FEFaceValues<3>                  fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
+    const FiniteElement<3> &fe     = dof_handler->get_fe();
+    const unsigned int      n_q    = face_quadrature.size();
+    const unsigned int      n_dofs = fe.n_dofs_per_cell();
+    // explicit dynamics: plain arrays in and out, the faces' data made once
+    const bool plain = out.values != nullptr && out.plain_residual != nullptr;
+    std::unique_ptr<FEFaceValues<3>> fe_face;
+    if (!plain)
+      fe_face = std::make_unique<FEFaceValues<3>>(mapping,
+                                                  fe,
+                                                  face_quadrature,
+                                                  update_values |
+                                                    update_quadrature_points |
+                                                    update_JxW_values);
+    else if (!tables.ready())
+      {
+        std::vector<
+          std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
+          faces;
+        for (const unsigned int m : slave_faces)
+          faces.emplace_back(facets[m].cell, facets[m].face);
+        tables.reinit(mapping, fe, face_quadrature, faces);
+      }
     std::unique_ptr<FEFaceValues<3>> post_face;
     if (out.post != nullptr)
       post_face =
@@ -473,8 +437,16 @@ namespace densify
                                           out.post->get_fe(),
                                           face_quadrature,
                                           update_values | update_JxW_values);
-    const std::vector<Point<3>> x_now = current_vertices(solution);
-    std::vector<unsigned int>   component(n_dofs);
+    const std::vector<Point<3>> x_now =
+      plain ? current_vertices(*out.values) : current_vertices(solution);
+    // the scalar shape functions of the base element behind each vector
+    // one (the same values as fe.shape_value(), a third of the calls)
+    std::vector<unsigned int> base_index(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      base_index[i] = fe.system_to_base_index(i).second;
+    const FiniteElement<3>   &base = fe.base_element(0);
+    std::vector<double>       base_phi(base.n_dofs_per_cell());
+    std::vector<unsigned int> component(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
       component[i] = fe.system_to_component_index(i).first;
 
@@ -501,7 +473,8 @@ namespace densify
         if (begin == end && post_face == nullptr)
           continue;
         const Facet &slave = facets[slave_faces[k]];
-        fe_face.reinit(slave.cell, slave.face);
+        if (!plain)
+          fe_face->reinit(slave.cell, slave.face);
         if (post_face)
           {
             const typename DoFHandler<3>::active_cell_iterator post_cell(
@@ -518,21 +491,35 @@ namespace densify
           }
         if (begin < end)
           {
-            fe_face[u].get_function_values(solution, u_values);
-            if (friction_on)
-              fe_face[u].get_function_values(*committed_solution, u_old);
-            slave.cell->get_dof_indices(master_dofs);
-            std::copy(master_dofs.begin(),
-                      master_dofs.end(),
-                      pair_dofs.begin());
+            if (plain)
+              {
+                tables.values(k, *out.values, u_values);
+                if (friction_on)
+                  tables.values(k, *out.committed_values, u_old);
+                std::copy(tables.dofs(k),
+                          tables.dofs(k) + n_dofs,
+                          pair_dofs.begin());
+              }
+            else
+              {
+                (*fe_face)[u].get_function_values(solution, u_values);
+                if (friction_on)
+                  (*fe_face)[u].get_function_values(*committed_solution, u_old);
+                slave.cell->get_dof_indices(master_dofs);
+                std::copy(master_dofs.begin(),
+                          master_dofs.end(),
+                          pair_dofs.begin());
+              }
           }
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const double JxW   = fe_face.JxW(q);
+            const double JxW   = plain ? tables.JxW(k, q) : fe_face->JxW(q);
             double       p_out = 0, slip_out = 0, status_out = 0;
             if (begin < end)
               {
-                const Point<3> x_s = fe_face.quadrature_point(q) + u_values[q];
+                const Point<3> x_s =
+                  (plain ? tables.point(k, q) : fe_face->quadrature_point(q)) +
+                  u_values[q];
                 const unsigned int idx = k * n_q + q;
                 const unsigned int kept =
                   (out.new_assignment != nullptr || assigned.empty()) ?
@@ -545,18 +532,20 @@ namespace densify
                     project(x_s, kept, x_now, projection_band, best_distance);
                 else
                   {
-                    // the closest candidate facet
+                    // the closest candidate facet (its normal once found)
                     for (unsigned int c = begin; c < end; ++c)
                       {
                         double           d2;
                         const Projection pr =
-                          project(x_s, candidates[c], x_now, 0., d2);
+                          project(x_s, candidates[c], x_now, 0., d2, false);
                         if (d2 < best_distance)
                           {
                             best_distance = d2;
                             best          = pr;
                           }
                       }
+                    if (best.facet != numbers::invalid_unsigned_int)
+                      best.normal = outward_normal(best.facet, x_now);
                     const unsigned int old = assigned[idx];
                     if (out.new_assignment != nullptr &&
                         old != numbers::invalid_unsigned_int &&
@@ -594,21 +583,34 @@ namespace densify
                 for (unsigned int a = 0; a < 3; ++a)
                   xi +=
                     best.bary[a] * reference_vertices[master.local_vertex[a]];
-                master.cell->get_dof_values(solution, master_u);
+                const types::global_dof_index *m_dofs =
+                  &facet_dofs[std::size_t(best.facet) * n_dofs];
+                if (plain)
+                  for (unsigned int i = 0; i < n_dofs; ++i)
+                    master_u(i) = (*out.values)[m_dofs[i]];
+                else
+                  master.cell->get_dof_values(solution, master_u);
                 Point<3> X_m;
                 for (unsigned int a = 0; a < 3; ++a)
-                  X_m +=
-                    best.bary[a] * master.cell->vertex(master.local_vertex[a]);
+                  X_m += best.bary[a] * master.position[a];
                 Tensor<1, 3> u_m, u_m_old;
+                if (plain)
+                  for (unsigned int b = 0; b < base_phi.size(); ++b)
+                    base_phi[b] = base.shape_value(b, xi);
                 for (unsigned int i = 0; i < n_dofs; ++i)
                   {
-                    master_phi[i] = fe.shape_value(i, xi);
+                    master_phi[i] =
+                      plain ? base_phi[base_index[i]] : fe.shape_value(i, xi);
                     u_m[component[i]] += master_u(i) * master_phi[i];
                   }
                 if (friction_on)
                   {
-                    master.cell->get_dof_values(*committed_solution,
-                                                master_old);
+                    if (plain)
+                      for (unsigned int i = 0; i < n_dofs; ++i)
+                        master_old(i) = (*out.committed_values)[m_dofs[i]];
+                    else
+                      master.cell->get_dof_values(*committed_solution,
+                                                  master_old);
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       u_m_old[component[i]] += master_old(i) * master_phi[i];
                   }
@@ -620,13 +622,9 @@ namespace densify
                 // every point that projects into the facet, and continuous
                 // in the displacement (doc/theory.md section 9)
                 const Tensor<1, 3> off =
-                  x_s -
-                  (best.bary[0] *
-                     x_now[master.cell->vertex_index(master.local_vertex[0])] +
-                   best.bary[1] *
-                     x_now[master.cell->vertex_index(master.local_vertex[1])] +
-                   best.bary[2] *
-                     x_now[master.cell->vertex_index(master.local_vertex[2])]);
+                  x_s - (best.bary[0] * x_now[master.vertex[0]] +
+                         best.bary[1] * x_now[master.vertex[1]] +
+                         best.bary[2] * x_now[master.vertex[2]]);
                 const double g =
                   (x_s - (X_m + u_m)) * n + (off - (off * n) * n).norm();
                 const double eps =
@@ -682,13 +680,19 @@ namespace densify
                 if (p > 0. || predicted)
                   {
                     // relative shape functions: slave phi, minus master phi
-                    master.cell->get_dof_indices(master_dofs);
+                    std::copy(m_dofs, m_dofs + n_dofs, master_dofs.begin());
                     std::copy(master_dofs.begin(),
                               master_dofs.end(),
                               pair_dofs.begin() + n_dofs);
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       {
-                        psi[i]                        = fe_face[u].value(i, q);
+                        if (plain)
+                          {
+                            psi[i]               = Tensor<1, 3>();
+                            psi[i][component[i]] = tables.shape(k, i, q);
+                          }
+                        else
+                          psi[i] = (*fe_face)[u].value(i, q);
                         psi[n_dofs + i]               = Tensor<1, 3>();
                         psi[n_dofs + i][component[i]] = -master_phi[i];
                       }
@@ -725,7 +729,12 @@ namespace densify
                             for (unsigned int i = 0; i < 2 * n_dofs; ++i)
                               pair_residual(i) =
                                 -weight * (traction * psi[i]) * JxW;
-                            out.residual->add(pair_dofs, pair_residual);
+                            if (plain)
+                              for (unsigned int i = 0; i < 2 * n_dofs; ++i)
+                                out.plain_residual->add(pair_dofs[i],
+                                                        pair_residual(i));
+                            else
+                              out.residual->add(pair_dofs, pair_residual);
                           }
                       }
                     if (out.matrix != nullptr)

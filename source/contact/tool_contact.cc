@@ -10,6 +10,7 @@
 #include <densify/contact/tool_contact.h>
 
 #include <algorithm>
+#include <memory>
 
 namespace densify
 {
@@ -41,6 +42,7 @@ namespace densify
     friction_laws     = friction;
     penalty           = penalty_per_particle;
     face_quadrature   = contact_quadrature;
+    tables            = FaceTables();
     shift.assign(tools.size(), Tensor<1, 3>());
     committed_shift = shift;
     faces.clear();
@@ -100,11 +102,6 @@ namespace densify
     const unsigned int               n_q     = face_quadrature.size();
     const unsigned int               n_dofs  = fe.n_dofs_per_cell();
     const unsigned int               n_tools = tool_list.size();
-    FEFaceValues<3>                  fe_face(mapping,
-                            fe,
-                            face_quadrature,
-                            update_values | update_quadrature_points |
-                              update_JxW_values);
     std::unique_ptr<FEFaceValues<3>> post_face;
     if (out.post != nullptr)
       post_face =
@@ -122,6 +119,31 @@ namespace densify
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<types::global_dof_index> post_indices;
     Vector<double> post_p, post_slip, post_status, post_weights;
+    // explicit dynamics: plain arrays in and out, the faces' data made once
+    const bool plain = out.values != nullptr && out.plain_residual != nullptr;
+    std::unique_ptr<FEFaceValues<3>> fe_face;
+    if (!plain)
+      fe_face = std::make_unique<FEFaceValues<3>>(mapping,
+                                                  fe,
+                                                  face_quadrature,
+                                                  update_values |
+                                                    update_quadrature_points |
+                                                    update_JxW_values);
+    if (plain && !tables.ready())
+      {
+        tables.reinit(mapping, fe, face_quadrature, faces);
+        face_vertices.resize(3 * faces.size());
+        face_vertex_dofs.resize(9 * faces.size());
+        for (unsigned int k = 0; k < faces.size(); ++k)
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              const auto face          = faces[k].first->face(faces[k].second);
+              face_vertices[3 * k + v] = face->vertex(v);
+              for (unsigned int d = 0; d < 3; ++d)
+                face_vertex_dofs[9 * k + 3 * v + d] =
+                  face->vertex_dof_index(v, d);
+            }
+      }
 
     // A face of linear elements stays flat, so a tool's gap at its points
     // is at least the smallest gap at its vertices (a plane's gap is linear
@@ -140,11 +162,18 @@ namespace densify
       const double eps      = penalty[cell->material_id()];
       Point<3>     x[3];
       for (unsigned int v = 0; v < 3; ++v)
-        {
-          x[v] = face->vertex(v);
-          for (unsigned int d = 0; d < 3; ++d)
-            x[v][d] += solution(face->vertex_dof_index(v, d));
-        }
+        if (plain)
+          {
+            x[v] = face_vertices[3 * k + v];
+            for (unsigned int d = 0; d < 3; ++d)
+              x[v][d] += (*out.values)[face_vertex_dofs[9 * k + 3 * v + d]];
+          }
+        else
+          {
+            x[v] = face->vertex(v);
+            for (unsigned int d = 0; d < 3; ++d)
+              x[v][d] += solution(face->vertex_dof_index(v, d));
+          }
       for (unsigned int t = 0; t < n_tools; ++t)
         {
           double lambda_max = 0.;
@@ -178,10 +207,19 @@ namespace densify
                 }
             continue;
           }
-        fe_face.reinit(cell, f);
-        fe_face[u].get_function_values(solution, u_values);
-        if (friction_on)
-          fe_face[u].get_function_values(*committed_solution, u_old);
+        if (plain)
+          {
+            tables.values(k, *out.values, u_values);
+            if (friction_on)
+              tables.values(k, *out.committed_values, u_old);
+          }
+        else
+          {
+            fe_face->reinit(cell, f);
+            (*fe_face)[u].get_function_values(solution, u_values);
+            if (friction_on)
+              (*fe_face)[u].get_function_values(*committed_solution, u_old);
+          }
         const double eps     = penalty[cell->material_id()];
         bool         touched = false;
         cell_matrix          = 0;
@@ -203,10 +241,12 @@ namespace densify
 
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const Point<3> x     = fe_face.quadrature_point(q) + u_values[q];
-            const double   JxW   = fe_face.JxW(q);
-            double         p_sum = 0, slip_sum = 0, status_max = 0;
-            bool           have_phi = false;
+            const Point<3> x =
+              (plain ? tables.point(k, q) : fe_face->quadrature_point(q)) +
+              u_values[q];
+            const double JxW   = plain ? tables.JxW(k, q) : fe_face->JxW(q);
+            double       p_sum = 0, slip_sum = 0, status_max = 0;
+            bool         have_phi = false;
             for (unsigned int t = 0; t < n_tools; ++t)
               {
                 const RigidTool &tool = tool_list[t];
@@ -266,7 +306,13 @@ namespace densify
                 if (!have_phi)
                   {
                     for (unsigned int i = 0; i < n_dofs; ++i)
-                      phi[i] = fe_face[u].value(i, q);
+                      if (plain)
+                        {
+                          phi[i]                      = Tensor<1, 3>();
+                          phi[i][tables.component(i)] = tables.shape(k, i, q);
+                        }
+                      else
+                        phi[i] = (*fe_face)[u].value(i, q);
                     have_phi = true;
                   }
                 if (predicted)
@@ -377,7 +423,10 @@ namespace densify
                                    post_status,
                                    post_weights,
                                    *out.sums);
-        if (touched)
+        if (touched && plain)
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            out.plain_residual->add(tables.dofs(k)[i], cell_residual(i));
+        else if (touched)
           {
             cell->get_dof_indices(dof_indices);
             out.residual->add(dof_indices, cell_residual);

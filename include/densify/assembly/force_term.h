@@ -23,6 +23,9 @@ namespace densify
 {
   using namespace dealii;
 
+  class AllValues;
+  class LocalForces;
+
   /// Where and how a force term is evaluated.
   struct AssemblyContext
   {
@@ -37,6 +40,13 @@ namespace densify
     /// True for explicit dynamics: no tangent is ever asked for, and every
     /// evaluation is an accepted state.
     bool explicit_dynamics = false;
+    /// Explicit dynamics: the values of @p solution and of the committed
+    /// solution as plain arrays (AllValues), or null.
+    const AllValues *values           = nullptr;
+    const AllValues *committed_values = nullptr;
+    /// Explicit dynamics: where a term that adds_plain_forces() adds its
+    /// forces instead of the residual vector, or null.
+    LocalForces *plain_forces = nullptr;
   };
 
   /**
@@ -72,6 +82,19 @@ namespace densify
     assemble(const AssemblyContext          &context,
              TrilinosWrappers::MPI::Vector  &residual,
              TrilinosWrappers::SparseMatrix *tangent) = 0;
+
+    /**
+     * True if the term, given AssemblyContext::plain_forces and the plain
+     * values, reads the solution from AssemblyContext::values and adds its
+     * forces to AssemblyContext::plain_forces instead of @p residual (the
+     * explicit force path of the contacts); the caller then passes the plain
+     * forces into the residual (LocalForces::finish()).
+     */
+    virtual bool
+    adds_plain_forces() const
+    {
+      return false;
+    }
 
     /// Add a fixed matrix to the compressed tangent (terms whose tangent
     /// does not depend on the state; the others do nothing).

@@ -23,6 +23,9 @@
 
 namespace densify
 {
+  class AllValues;
+  class LocalForces;
+
   /**
    * Internal forces and tangent of linear tetrahedra with the volume ratio
    * averaged over vertex patches (Bonet & Burton 1998, "averaged nodal
@@ -80,6 +83,21 @@ namespace densify
              TrilinosWrappers::MPI::Vector                      &residual,
              TrilinosWrappers::SparseMatrix                     *tangent,
              const bool shared_corners = false);
+
+    /**
+     * The internal forces alone, for explicit dynamics: add them at
+     * @p solution (all DoFs' values) to @p residual. The same forces, to the
+     * last bit, as assemble() without a tangent and with shared corners
+     * (source/assembly/nodal_averaging_forces.cc), read from and written to
+     * plain arrays. Returns an empty string or the message of the first
+     * material failure, as assemble().
+     */
+    std::string
+    forces(const AllValues                                    &solution,
+           const std::vector<std::shared_ptr<const Material>> &materials,
+           const std::vector<MaterialState>                   *committed,
+           std::vector<MaterialState>                         *trial,
+           LocalForces                                        &residual);
 
     /**
      * The vertex averages j_a = sum_f V_f j_f / sum_f V_f of the volume
@@ -154,6 +172,16 @@ namespace densify
     std::vector<double>    U, U_prime;
     std::vector<double>    j_bar, S, beta;
     std::vector<CellState> state;
+    /// The kinematics of forces() per cell, in compact arrays: F, F^{-T}
+    /// (finite strain), the volume measure j and d j / d u_i.
+    std::vector<Tensor<2, 3>>           cell_F, inverse_transpose;
+    std::vector<double>                 cell_j;
+    std::vector<std::array<double, 12>> cell_dj;
+    /// Per patch cell (from slot_start[a] on for patch a): V_f / V_a.
+    std::vector<double>       slot_weight;
+    std::vector<unsigned int> slot_start;
+    /// Work array of forces(): d j_a / du on the DoFs of one patch.
+    std::vector<double> patch_work;
     /// The cells whose kinematics this rank needs: those in the patch of a
     /// vertex of a locally owned cell (all cells on one rank).
     std::vector<unsigned int> needed_cells;

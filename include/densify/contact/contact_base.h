@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/force_term.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -50,6 +51,12 @@ namespace densify
     std::vector<double>            *new_lambda     = nullptr;
     std::vector<Tensor<1, 3>>      *new_traction   = nullptr;
     std::vector<double>            *new_slip       = nullptr;
+    /// Explicit dynamics: the solution and the committed solution as plain
+    /// arrays, read instead of the vectors, and where the forces go instead
+    /// of @p residual (all three or none).
+    const AllValues *values           = nullptr;
+    const AllValues *committed_values = nullptr;
+    LocalForces     *plain_residual   = nullptr;
   };
 
   /**
@@ -146,16 +153,25 @@ namespace densify
      * With @p relaxation r > 0 each multiplier then moves towards its
      * pressure, lambda += r (p - lambda): an integral action that removes
      * the penetration of lasting contacts over about 1/r calls, so that the
-     * penalty does not bias the slowly loaded (quasi-static) answer.
+     * penalty does not bias the slowly loaded (quasi-static) answer. With
+     * @p plain (its values, committed_values and plain_residual) the pass
+     * reads the plain arrays and adds the forces to plain_residual instead.
      */
     Result
     assemble_and_commit(const Mapping<3>                    &mapping,
                         const TrilinosWrappers::MPI::Vector &solution,
                         TrilinosWrappers::MPI::Vector       &residual,
-                        const double                         relaxation = 0.)
+                        const double                         relaxation = 0.,
+                        const ContactOutputs                *plain = nullptr)
     {
       ContactOutputs out;
       out.residual = &residual;
+      if (plain != nullptr)
+        {
+          out.values           = plain->values;
+          out.committed_values = plain->committed_values;
+          out.plain_residual   = plain->plain_residual;
+        }
       std::vector<double> pressure(lambda.size());
       if (relaxation > 0.)
         out.new_lambda = &pressure;
@@ -219,15 +235,31 @@ namespace densify
              TrilinosWrappers::MPI::Vector  &residual,
              TrilinosWrappers::SparseMatrix *tangent) override
     {
-      last = context.explicit_dynamics ? assemble_and_commit(*context.mapping,
-                                                             *context.solution,
-                                                             residual,
-                                                             relaxation) :
-                                         assemble(*context.mapping,
-                                                  *context.solution,
-                                                  residual,
-                                                  tangent,
-                                                  context.tangent_margin);
+      ContactOutputs plain;
+      plain.values           = context.values;
+      plain.committed_values = context.committed_values;
+      plain.plain_residual   = context.plain_forces;
+      const bool use_plain   = context.values != nullptr &&
+                             context.committed_values != nullptr &&
+                             context.plain_forces != nullptr;
+      last = context.explicit_dynamics ?
+               assemble_and_commit(*context.mapping,
+                                   *context.solution,
+                                   residual,
+                                   relaxation,
+                                   use_plain ? &plain : nullptr) :
+               assemble(*context.mapping,
+                        *context.solution,
+                        residual,
+                        tangent,
+                        context.tangent_margin);
+    }
+
+    /// The explicit pass reads and writes plain arrays when given them.
+    bool
+    adds_plain_forces() const override
+    {
+      return true;
     }
 
     void

@@ -15,6 +15,7 @@
 
 #include <densify/contact/broad_search.h>
 #include <densify/contact/contact_law.h>
+#include <densify/contact/face_tables.h>
 #include <densify/contact/facet_tree.h>
 #include <densify/contact/tool_contact.h>
 
@@ -211,6 +212,10 @@ namespace densify
       /// The cell's local vertex numbers of the face's vertices, then the
       /// opposite vertex.
       std::array<unsigned int, 4> local_vertex = {{0, 0, 0, 0}};
+      /// Their global vertex indices.
+      std::array<unsigned int, 4> vertex = {{0, 0, 0, 0}};
+      /// Reference positions of the face's vertices.
+      std::array<Point<3>, 3> position;
     };
 
     /// The contact partner of one slave quadrature point.
@@ -244,15 +249,36 @@ namespace densify
     std::vector<Point<3>>
     current_vertices(const TrilinosWrappers::MPI::Vector &solution) const;
 
+    /// current_vertices() from the plain array @p values.
+    std::vector<Point<3>>
+    current_vertices(const AllValues &values) const;
+
+    /// A vertex of the surface facets: its index, reference position and
+    /// DoFs.
+    struct SurfaceVertex
+    {
+      unsigned int                           index = 0;
+      Point<3>                               position;
+      std::array<types::global_dof_index, 3> dofs;
+    };
+
     /// Closest point to @p x of the facet @p m in the current configuration
     /// @p vertices, enlarged about its centroid so that the barycentric
-    /// coordinates reach down to -@p band (0: the facet itself).
+    /// coordinates reach down to -@p band (0: the facet itself). Without
+    /// @p with_normal the projection's normal is left zero.
     Projection
     project(const Point<3>              &x,
             const unsigned int           m,
             const std::vector<Point<3>> &vertices,
             const double                 band,
-            double                      &distance_squared) const;
+            double                      &distance_squared,
+            const bool                   with_normal = true) const;
+
+    /// The outward unit normal of facet @p m in the configuration
+    /// @p vertices.
+    Tensor<1, 3>
+    outward_normal(const unsigned int           m,
+                   const std::vector<Point<3>> &vertices) const;
 
     /// How far beyond its edges a slave point keeps its master facet, in
     /// barycentric coordinates (update_projections()).
@@ -268,6 +294,13 @@ namespace densify
     /// All surface facets, by particle (facets_of[p] ranges over facets).
     std::vector<Facet>        facets;
     std::vector<unsigned int> first_facet;
+    /// The DoF indices of each facet's cell (n_dofs_per_cell per facet).
+    std::vector<types::global_dof_index> facet_dofs;
+    /// The vertices of all facets, each once.
+    std::vector<SurfaceVertex> surface_vertices;
+    /// The slave faces' quadrature data for the explicit pass on plain
+    /// arrays; made at its first use (the mapping comes with the pass).
+    mutable FaceTables tables;
     /// The slave faces (boundary faces of locally owned cells): facet index.
     std::vector<unsigned int> slave_faces;
     /// Candidate master facets of each slave face (CSR).

@@ -14,6 +14,7 @@
 
 #include <densify/contact/contact_base.h>
 #include <densify/contact/contact_law.h>
+#include <densify/contact/face_tables.h>
 #include <densify/contact/rigid_tools.h>
 
 #include <array>
@@ -216,6 +217,12 @@ namespace densify
     Quadrature<2>             face_quadrature;
     std::vector<std::pair<DoFHandler<3>::active_cell_iterator, unsigned int>>
       faces;
+    /// The faces' quadrature data and, per face, its vertices and their
+    /// DoFs (3 x 3 per face), for the explicit pass on plain arrays; made
+    /// at its first use (the mapping comes with the pass).
+    mutable FaceTables                           tables;
+    mutable std::vector<Point<3>>                face_vertices;
+    mutable std::vector<types::global_dof_index> face_vertex_dofs;
   };
 
   /**

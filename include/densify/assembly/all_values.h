@@ -1,0 +1,85 @@
+// Plain arrays of a Trilinos vector's values and of forces on the way into
+// one, for the element loops of explicit dynamics.
+#pragma once
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <vector>
+
+namespace densify
+{
+  using namespace dealii;
+
+  /**
+   * The values a (ghosted) Trilinos vector holds on this rank, read once
+   * into a plain array indexed by global DoF index. Every rank holds the
+   * whole mesh (parallel::shared::Triangulation), so the array has the
+   * global size; entries the vector does not hold on this rank stay zero.
+   * Reading an entry is an array access, where the Trilinos vector's
+   * operator() or get_dof_values() looks the index up in its map.
+   */
+  class AllValues
+  {
+  public:
+    /// Read every entry @p vector holds on this rank (owned and ghost).
+    void
+    gather(const TrilinosWrappers::MPI::Vector &vector);
+
+    /// The value of global DoF @p i.
+    double
+    operator[](const types::global_dof_index i) const
+    {
+      return values[i];
+    }
+
+    /// The whole array, indexed by global DoF index.
+    const double *
+    data() const
+    {
+      return values.data();
+    }
+
+  private:
+    std::vector<double> values;
+  };
+
+
+
+  /**
+   * Forces added entry by entry into a plain array indexed by global DoF
+   * index, then into a Trilinos vector (without ghosts) at once. start()
+   * copies the vector's locally owned entries, so that each owned entry
+   * receives its additions in the same order and from the same start value
+   * as by the vector's add(); finish() writes the owned entries back and
+   * passes the nonzero entries owned elsewhere to the vector's add(), whose
+   * compress() adds them on their owner as before: the sums are
+   * bit-identical to adding each contribution to the vector.
+   */
+  class LocalForces
+  {
+  public:
+    /// Start from the locally owned entries of @p vector (others zero).
+    void
+    start(const TrilinosWrappers::MPI::Vector &vector);
+
+    /// Add @p value to global DoF @p i.
+    void
+    add(const types::global_dof_index i, const double value)
+    {
+      forces[i] += value;
+    }
+
+    /// Write the sums into @p vector: its owned entries are replaced, the
+    /// others go to its add(); compress(VectorOperation::add) must follow.
+    void
+    finish(TrilinosWrappers::MPI::Vector &vector);
+
+  private:
+    std::vector<double> forces;
+    /// Per global DoF index: owned by this rank?
+    std::vector<bool> owned;
+    /// Work space for the entries owned elsewhere.
+    std::vector<types::global_dof_index> other_indices;
+    std::vector<double>                  other_values;
+  };
+} // namespace densify
