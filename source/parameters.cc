@@ -669,12 +669,16 @@ namespace densify
                 (Utilities::trim(entry.substr(0, eq)) == "Friction tangent" ||
                  Utilities::trim(entry.substr(0, eq)) == "Geometric tangent"))
               continue;
-            // so are the cut-backs (a failed run resumes with more), and the
-            // size limit only guards the start
+            // so are the cut-backs (a failed run resumes with more), the
+            // explicit step's fraction of the stable step (an unstable run
+            // resumes with less; the step is measured anew at every
+            // station), and the size limit only guards the start
             if (path.size() == 1 &&
                 ((path[0] == "Time stepping" &&
                   Utilities::trim(entry.substr(0, eq)) ==
                     "Maximum cut-backs") ||
+                 (path[0] == "Explicit" &&
+                  Utilities::trim(entry.substr(0, eq)) == "Time step safety") ||
                  (path[0] == "Mesh" &&
                   Utilities::trim(entry.substr(0, eq)) == "Maximum elements")))
               continue;

@@ -3,7 +3,8 @@
 # with the same statistics.csv and particles.csv as the run without a stop
 # (velocities, the friction and plastic history, the mass-scaling factors
 # and the energy account are in the checkpoint); and --resume refuses a
-# checkpoint of the other method.
+# checkpoint of the other method, but accepts a lower Explicit/Time step
+# safety.
 set -eu
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
@@ -31,3 +32,14 @@ err=$("$DENSIFY" "$scene" "${common[@]}" --set "Time stepping/Number of steps=6"
 echo "implicit --resume of the explicit checkpoint: exit $rc"
 [ $rc -eq 2 ] || { echo "$err"; exit 1; }
 echo "$err" | grep -q "Solver/Method" || { echo "$err"; exit 1; }
+# an unstable run's message says to lower Explicit/Time step safety: a
+# resumed run may do so (the stable step is measured anew at every station)
+"$DENSIFY" "$scene" "${common[@]}" "${explicit[@]}" \
+  --set "Output/Directory=safer" --stop-after 3 > safer.log 2>&1 || true
+"$DENSIFY" "$scene" "${common[@]}" "${explicit[@]}" \
+  --set "Explicit/Time step safety=0.7" \
+  --set "Output/Directory=safer" --resume > safer_resumed.log 2>&1 ||
+  { cat safer_resumed.log; exit 1; }
+rows=$(tail -n +2 safer/statistics.csv | wc -l)
+[ "$rows" -eq 6 ] || { echo "resumed with safety 0.7: $rows rows"; exit 1; }
+echo "resumed with a lower Explicit/Time step safety: 6 steps, yes"
