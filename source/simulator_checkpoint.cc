@@ -94,6 +94,24 @@ namespace densify
           return "'" + line + "'";
       return "no other entry";
     }
+
+    /// The lines of the fingerprint @p stored whose entry @p current checks
+    /// too: a checkpoint of an earlier densify may hold entries that are
+    /// now free to change on --resume.
+    std::string
+    checked_entries(const std::string &stored, const std::string &current)
+    {
+      std::set<std::string> keys;
+      std::istringstream    in_current(current);
+      for (std::string line; std::getline(in_current, line);)
+        keys.insert(line.substr(0, line.find(" = ")));
+      std::string        result;
+      std::istringstream in_stored(stored);
+      for (std::string line; std::getline(in_stored, line);)
+        if (keys.count(line.substr(0, line.find(" = "))) != 0)
+          result += line + '\n';
+      return result;
+    }
   } // namespace
 
 
@@ -296,6 +314,9 @@ namespace densify
             std::to_string(header.n_ranks) + " MPI rank(s), this run has " +
             std::to_string(n_ranks) + "; resume with mpirun -np " +
             std::to_string(header.n_ranks));
+        if (!header.fingerprint.empty())
+          header.fingerprint =
+            checked_entries(header.fingerprint, prm.fingerprint);
         if (!prm.fingerprint.empty() && !header.fingerprint.empty() &&
             header.fingerprint != prm.fingerprint)
           throw InputError(
