@@ -181,8 +181,8 @@ namespace densify
     newton_control.linear_tolerance = prm.solver.linear_tolerance;
     // no node moves by more than half the smallest element size in one
     // Newton iteration
-    newton_control.step_limit = 0.5 * h_min;
-    newton_control.verbose    = prm.output.verbose;
+    newton_control.step_limit         = 0.5 * h_min;
+    newton_control.verbose            = prm.output.verbose;
     newton_control.continuation       = effects.continuation;
     newton_control.continuation_start = prm.solver.pseudo_mass;
     // absolute floor: a force far below anything the scene can carry

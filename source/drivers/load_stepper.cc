@@ -81,10 +81,10 @@ namespace densify
                           const unsigned int  step,
                           StepCounts         &counts)
   {
-    const double step_length       = control.step_length;
-    double       dt                = next_increment;
-    unsigned int cutbacks_in_a_row = 0;
-    const Continuation continuation = newton.continuation();
+    const double       step_length       = control.step_length;
+    double             dt                = next_increment;
+    unsigned int       cutbacks_in_a_row = 0;
+    const Continuation continuation      = newton.continuation();
     // the continuation for this increment
     bool pseudo_transient = continuation == Continuation::always;
     while (current_time < time - 1e-12 * step_length)
