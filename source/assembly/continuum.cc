@@ -170,15 +170,20 @@ namespace densify
             tangent->add(dofs, cell_matrix);
         }
     forces.compress(VectorOperation::add);
-    if (Utilities::MPI::max(material_failure.empty() ? 0 : 1,
-                            dof_handler.get_communicator()) > 0)
+    // every rank reports the failure of the lowest failing rank, with that
+    // rank's own text (rank 0 writes the message the user reads)
+    const MPI_Comm     comm    = dof_handler.get_communicator();
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int failing = Utilities::MPI::min(
+      material_failure.empty() ? numbers::invalid_unsigned_int : rank, comm);
+    if (failing != numbers::invalid_unsigned_int)
       {
         if (with_matrix)
           tangent->compress(VectorOperation::add);
-        throw std::runtime_error("material: " +
-                                 (material_failure.empty() ?
-                                    std::string("failed on another rank") :
-                                    material_failure));
+        const std::string text =
+          Utilities::MPI::broadcast(comm, material_failure, failing);
+        throw std::runtime_error("material: " + text + " (on rank " +
+                                 std::to_string(failing) + ")");
       }
   }
 

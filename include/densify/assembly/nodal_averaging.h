@@ -177,11 +177,6 @@ namespace densify
     std::vector<Tensor<2, 3>>           cell_F, inverse_transpose;
     std::vector<double>                 cell_j;
     std::vector<std::array<double, 12>> cell_dj;
-    /// Per patch cell (from slot_start[a] on for patch a): V_f / V_a.
-    std::vector<double>       slot_weight;
-    std::vector<unsigned int> slot_start;
-    /// Work array of forces(): d j_a / du on the DoFs of one patch.
-    std::vector<double> patch_work;
     /// The cells whose kinematics this rank needs: those in the patch of a
     /// vertex of a locally owned cell (all cells on one rank).
     std::vector<unsigned int> needed_cells;
