@@ -2,7 +2,6 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <densify/material/j2_plasticity.h>
-#include <densify/material/symmetric_eigen.h>
 
 #include <algorithm>
 #include <array>
@@ -252,15 +251,17 @@ namespace densify
     // spectral decomposition be_tr = sum_a x_a n_a (x) n_a.
     const Tensor<2, 3> Finv = invert(F);
     const Tensor<2, 3> G    = F * old.Cp_inv;
-    // The closed-form decomposition (symmetric_eigen.h): orthonormal
-    // eigenvectors also for equal eigenvalues (be = I at rest), about three
-    // times cheaper than deal.II's QL iteration.
+    // QL with implicit shifts: orthonormal eigenvectors also for equal
+    // eigenvalues (be = I at rest), a little cheaper than Jacobi rotations
+    // (7.9 instead of 9.0 % of a profile of the paper scene; the hybrid
+    // method was no faster; doc/performance.md, "Assembly kernels")
     //
     // Off-diagonal entries below 1e-20 of the trace are dropped: they change
     // the stress by less than 1e-20 E, far below the law's own round-off
-    // (the logarithmic strain of a stretch resolves 1e-16); the far field of
-    // an explicit run's first steps has entries of 1e-150 and below
-    // (tests/material_j2_near_identity.cc).
+    // (the logarithmic strain of a stretch resolves 1e-16). deal.II 9.4's
+    // QL iteration returns NaN eigenvectors for off-diagonal entries between
+    // about 1e-150 and 1e-100 (the far field of an explicit run's first
+    // steps has such cells; tests/material_j2_near_identity.cc).
     const SymmetricTensor<2, 3> be_trial = symmetrize(G * transpose(F));
     const double                scale    = trace(be_trial);
     const bool diagonal = std::abs(be_trial[0][1]) <= 1e-20 * scale &&
@@ -281,7 +282,8 @@ namespace densify
         });
       }
     else
-      eig = symmetric_eigenvectors(be_trial);
+      eig = eigenvectors(be_trial,
+                         SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
 
     double Q[3][3]; // Q[i][a] = (n_a)_i
     double x[3], eps[3];

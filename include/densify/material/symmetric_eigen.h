@@ -21,8 +21,9 @@ namespace densify
    * cross products of the rows of A - lambda I; the other two from one Jacobi
    * rotation in the plane orthogonal to it, which stays accurate when their
    * eigenvalues are close or equal. Each eigenpair satisfies A v = lambda v
-   * to round-off of the norm of A (tests/material_symmetric_eigen.cc). About
-   * three times cheaper than deal.II's QL iteration with implicit shifts.
+   * to round-off of the norm of A (tests/material_symmetric_eigen.cc). Not
+   * yet used by J2Plasticity, whose Newton paths it would move by round-off
+   * (doc/performance.md, "What limits it").
    */
   std::array<std::pair<double, Tensor<1, 3>>, 3>
   symmetric_eigenvectors(const SymmetricTensor<2, 3> &A);
