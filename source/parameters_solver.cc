@@ -186,6 +186,17 @@ namespace densify
         "punch starts at full speed).",
         Patterns::Double(0., 0.999));
       prm.add_parameter(
+        "End speed fraction",
+        explicit_dynamics.end_speed_fraction,
+        "The scene-time rate (the punch speed, for a punch moving at a "
+        "constant rate in the scene) at the end of the load history as a "
+        "fraction of its value after the ramp (dimensionless, 0.01 <= r <= "
+        "1); in between it falls linearly with the scene time. r < 1 gives "
+        "the dense end of a compaction, where the forces rise steeply, more "
+        "of the Number of steps: at r = 0.25 the last fifth of the stroke "
+        "takes 34 % of them instead of 20 %. 1: constant rate.",
+        Patterns::Double(0.01, 1.));
+      prm.add_parameter(
         "Damping ratio",
         explicit_dynamics.damping_ratio,
         "Mass-proportional damping, as a fraction of the critical damping of "

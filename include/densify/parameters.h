@@ -223,6 +223,9 @@ namespace densify
     /// Fraction of the loading time over which the punch velocity rises
     /// smoothly from zero.
     double ramp_fraction = 0.05;
+    /// Punch speed at the end of the load history as a fraction of its
+    /// speed after the ramp; it falls linearly with scene time in between.
+    double end_speed_fraction = 1.;
     /// Mass-proportional damping as a fraction of the critical damping of
     /// a particle's lowest compression mode.
     double damping_ratio = 0.;

@@ -21,12 +21,36 @@ namespace densify
 
 
 
+  double
+  ExplicitDynamics::uniform_time(const double tau) const
+  {
+    // sigma' = tau' / g(tau) with the speed g(tau) = 1 - a tau / T_s,
+    // a = 1 - End speed fraction
+    const double a = 1. - prm.end_speed_fraction;
+    if (a == 0.)
+      return tau;
+    return -scene_end / a * std::log1p(-a * tau / scene_end);
+  }
+
+
+
+  double
+  ExplicitDynamics::slowed_time(const double sigma) const
+  {
+    const double a = 1. - prm.end_speed_fraction;
+    if (a == 0.)
+      return sigma;
+    return -scene_end / a * std::expm1(-a * sigma / scene_end);
+  }
+
+
+
   std::pair<double, double>
   ExplicitDynamics::ramp() const
   {
     const double T  = prm.loading_time;
     const double tr = prm.ramp_fraction * T;
-    return {tr, scene_end / (T - tr / 2.)};
+    return {tr, uniform_time(scene_end) / (T - tr / 2.)};
   }
 
 
@@ -34,7 +58,7 @@ namespace densify
   double
   ExplicitDynamics::scene_time(const double t) const
   {
-    // tau' = k s(t / t_r) with the smooth step s(x) = 3x^2 - 2x^3 up to the
+    // sigma' = k s(t / t_r) with the smooth step s(x) = 3x^2 - 2x^3 up to the
     // ramp's end t_r, k afterwards; int_0^x s = x^3 - x^4/2
     const auto [tr, k] = ramp();
     if (t <= 0.)
@@ -42,9 +66,9 @@ namespace densify
     if (t < tr)
       {
         const double x = t / tr;
-        return k * tr * (x * x * x - x * x * x * x / 2.);
+        return slowed_time(k * tr * (x * x * x - x * x * x * x / 2.));
       }
-    return k * (tr / 2. + (t - tr));
+    return slowed_time(k * (tr / 2. + (t - tr)));
   }
 
 
@@ -55,10 +79,11 @@ namespace densify
     const auto [tr, k] = ramp();
     if (tau <= 0.)
       return 0.;
-    if (tau >= k * tr / 2.)
-      return tau / k + tr / 2.;
+    const double sigma = uniform_time(tau);
+    if (sigma >= k * tr / 2.)
+      return sigma / k + tr / 2.;
     // inside the ramp: bisection on the monotone x^3 - x^4/2
-    const double target = tau / (k * tr);
+    const double target = sigma / (k * tr);
     double       lo = 0., hi = 1.;
     for (unsigned int i = 0; i < 60; ++i)
       {

@@ -63,7 +63,11 @@ namespace densify
    *   u_{n+1}   = u_n + h_{n+1/2} v_{n+1/2},  h = (h_{n-1/2} + h_{n+1/2})/2.
    * The scene's load history (scene time 0 ... T_s) is mapped onto physical
    * time 0 ... Loading time: the scene-time rate rises from zero along a
-   * smooth step (3x^2 - 2x^3) over the ramp and stays constant after it.
+   * smooth step (3x^2 - 2x^3) over the ramp and then falls linearly with
+   * the scene time to End speed fraction of its value at the end (constant
+   * at the default 1). With the uniform time sigma, d sigma = d tau / g(tau),
+   * g(tau) = 1 - (1 - End speed fraction) tau / T_s, sigma follows the
+   * ramp and the constant rate, and tau(sigma) is in closed form.
    * advance() runs from one station (a scene load step) to the next with
    * equal steps that end on it. The energy account: kinetic energy, the
    * work of the internal forces, of the other forces on the mesh and of the
@@ -186,7 +190,16 @@ namespace densify
     /// Energy sums so far (this rank's part of the work; kinetic global).
     double kinetic = 0., w_internal = 0., w_external = 0., w_damping = 0.;
 
-    /// The ramp's end t_r (s) and the scene-time rate k after it.
+    /// The uniform time sigma at scene time @p tau (the integral of
+    /// 1 / g, the inverse of the slowing-down speed).
+    double
+    uniform_time(const double tau) const;
+
+    /// Scene time at uniform time @p sigma (the inverse of uniform_time()).
+    double
+    slowed_time(const double sigma) const;
+
+    /// The ramp's end t_r (s) and the uniform-time rate k after it.
     std::pair<double, double>
     ramp() const;
 
