@@ -730,8 +730,17 @@ namespace densify
         if (!write_failure.empty())
           throw std::runtime_error(write_failure);
 
-        const double left = (s.wall_seconds - wall_before) /
-                            (step + 1 - first_step) * (n_steps - step);
+        // the share of the work done since the start of this process: the
+        // stations, or for explicit runs the physical time, whose steps
+        // are equal while a station's are not (Explicit/End speed fraction)
+        const auto work = [&](const unsigned int k) {
+          const double tau = prm.time.end_time * k / n_steps;
+          return explicit_dynamics ? explicit_dynamics->physical_time(tau) :
+                                     tau;
+        };
+        const double done = work(step) - work(first_step - 1);
+        const double left = (s.wall_seconds - wall_before) / done *
+                            (work(n_steps) - work(step));
         pcout << progress_line(s,
                                n_steps,
                                pole_springs != nullptr,
