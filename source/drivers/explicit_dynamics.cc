@@ -199,7 +199,10 @@ namespace densify
                  << n_steps << "): " << e.what()
                  << "; the run is probably unstable: lower Explicit/Time step "
                     "safety (now "
-                 << prm.safety << ")";
+                 << prm.safety
+                 << "); if it fails again near the same stroke, a cell is "
+                    "being crushed (scripts/postprocess/cell_volume.py lists "
+                    "the cells' volume ratios; doc/performance.md)";
             throw std::runtime_error(text.str());
           }
         for (unsigned int i = 0; i < size; ++i)
