@@ -1,6 +1,6 @@
 # The post-processing scripts on a real two-step run of prm/default.prm
-# (its own mesh, about 2 s): plot_statistics.py, particle_table.py and
-# render.py (off-screen, under xvfb-run when there is no display) write their
+# (its own mesh, about 2 s): plot_statistics.py, particle_table.py,
+# cell_volume.py and render.py (off-screen, under xvfb-run when there is no display) write their
 # files, the pictures are PNGs of some size and the table has one row per
 # particle. Then the run's sphere meshes are flattened onto k vertical planes
 # by a made-up displacement, and the mid-height sections must have k edges.
@@ -61,6 +61,15 @@ awk -F, 'NR > 1 && $7 != 0 {bad = 1} END {exit bad}' "$table" \
 
 echo "== edges of the run's spheres flattened onto k planes"
 "$python" "$scripts/flatten_check.py" out --step 2
+
+echo "== cell_volume.py"
+# pressed by 8 um, every cell keeps its volume within a tenth: the
+# smallest ratio of each step is below 1 (the contacts) and above 0.9
+"$python" "$scripts/cell_volume.py" out > cells.txt
+cat cells.txt
+awk '$1 ~ /^[0-9]+$/ {n++; if (!($3 > 0.9 && $3 < 1.)) bad = 1}
+     END {exit bad || n != 2}' cells.txt \
+  || { echo "FAIL: cell_volume.py: two steps with 0.9 < min V/V0 < 1 expected" >&2; exit 1; }
 
 echo "== render.py"
 "$python" "$scripts/render.py" out --out plots --size 600 450
