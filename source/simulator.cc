@@ -739,8 +739,8 @@ namespace densify
                                      tau;
         };
         const double done = work(step) - work(first_step - 1);
-        const double left = (s.wall_seconds - wall_before) / done *
-                            (work(n_steps) - work(step));
+        const double left =
+          (s.wall_seconds - wall_before) / done * (work(n_steps) - work(step));
         pcout << progress_line(s,
                                n_steps,
                                pole_springs != nullptr,
