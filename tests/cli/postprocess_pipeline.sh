@@ -1,8 +1,8 @@
 # The post-processing scripts on a real two-step run of prm/default.prm
 # (its own mesh, about 2 s): plot_statistics.py, particle_table.py,
-# cell_volume.py and render.py (off-screen, under xvfb-run when there is no display) write their
-# files, the pictures are PNGs of some size and the table has one row per
-# particle. Then the run's sphere meshes are flattened onto k vertical planes
+# cell_volume.py and render.py (off-screen, under xvfb-run when there is no
+# display) write their files, the pictures are PNGs of some size and the
+# table has one row per particle. Then the run's sphere meshes are flattened onto k vertical planes
 # by a made-up displacement, and the mid-height sections must have k edges.
 # Needs Debian's python3-numpy, python3-matplotlib, python3-vtk9, xvfb and
 # xauth (scripts/setup.sh installs them).
