@@ -9,7 +9,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 if [ -z "${DENSIFY:-}" ]; then
-  bash "$root/scripts/setup.sh"
+  # only the executable: the test programs are built by scripts/test.sh
+  bash "$root/scripts/setup.sh" densify
   DENSIFY=$root/build/densify
 fi
 if [ $# -eq 0 ] || [[ $1 == -* ]]; then

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Densify needs (if missing), configures and builds it into build/.
-# Usage: bash scripts/setup.sh   (environment: BUILD_TYPE=Release|Debug, JOBS=n)
+# Usage: bash scripts/setup.sh [TARGET...]   (environment: BUILD_TYPE=Release|Debug, JOBS=n)
+#   Without TARGET everything is built (the executable, the test programs,
+#   the benchmarks); scripts/run.sh builds only the target densify.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 packages=(libdeal.ii-dev libmumps-dev g++ make cmake numdiff openmpi-bin
@@ -22,4 +24,6 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 jobs=${JOBS:-$(nproc)}
 cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" ${CMAKE_ARGS:-} >/dev/null
-cmake --build "$root/build" -j "$jobs"
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
+cmake --build "$root/build" -j "$jobs" "${targets[@]}"

@@ -150,7 +150,6 @@ namespace densify
       if (explicit_method &&
           ((entry.rfind("Solver/", 0) == 0 && entry != "Solver/Method") ||
            entry == "Contact/Penalty factor" ||
-           entry == "Contact/Gap tolerance" ||
            entry == "Contact/Maximum augmentations" ||
            entry == "Contact/Friction tangent" ||
            entry == "Contact/Geometric tangent" ||

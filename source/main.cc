@@ -203,6 +203,7 @@ main(int argc, char **argv)
       scene                  = build_scene(parameters);
       // options that do not fit together are input errors too
       resolve_effects(parameters, scene);
+      check_element_size(parameters, scene.particles);
       const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
       check_mesh_size(parameters, estimate);
       std::ostringstream what;

@@ -9,7 +9,10 @@
 #include <densify/utilities.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -357,7 +360,8 @@ namespace densify
         "Largest penetration of a particle into a tool or another particle "
         "accepted at the end of a step, in mm (> 0, well below the element "
         "size); multipliers are updated until it is met. Smaller: more "
-        "accurate contact, more updates.",
+        "accurate contact, more updates. Explicit runs (no multiplier "
+        "updates) print one warning at the first station above it.",
         Patterns::Double(1e-15));
       prm.add_parameter(
         "Maximum augmentations",
@@ -541,13 +545,23 @@ namespace densify
                                "' is a directory: give a .prm file");
     std::string text;
     {
-      std::ifstream in(filename, std::ios::binary);
-      if (!in)
+      // C stdio, whose error flag tells a file that cannot be read (such as
+      // /proc/self/mem) from an empty one
+      std::FILE *in = std::fopen(filename.c_str(), "rb");
+      if (in == nullptr)
         throw std::runtime_error("cannot open parameter file '" + filename +
-                                 "'");
-      std::ostringstream content;
-      content << in.rdbuf();
-      text = content.str();
+                                 "': " + std::strerror(errno));
+      char        buffer[4096];
+      std::size_t n;
+      while ((n = std::fread(buffer, 1, sizeof(buffer), in)) > 0)
+        text.append(buffer, n);
+      const bool failed = std::ferror(in) != 0;
+      const int  code   = errno;
+      std::fclose(in);
+      if (failed)
+        throw std::runtime_error("cannot read parameter file '" + filename +
+                                 "': " + std::strerror(code) +
+                                 ": give a readable .prm file");
     }
     // a UTF-8 byte-order mark, as some editors write
     if (text.rfind("\xEF\xBB\xBF", 0) == 0)
@@ -670,15 +684,20 @@ namespace densify
                  Utilities::trim(entry.substr(0, eq)) == "Geometric tangent"))
               continue;
             // so are the cut-backs (a failed run resumes with more), the
-            // explicit step's fraction of the stable step (an unstable run
-            // resumes with less; the step is measured anew at every
-            // station), and the size limit only guards the start
+            // explicit step's fraction of the stable step and the number of
+            // explicit steps (an unstable run or one that left the
+            // quasi-static guard resumes with less or more; the step and the
+            // mass are set anew at every station), the guard's limits, and
+            // the size limit only guards the start
+            const std::string name = Utilities::trim(entry.substr(0, eq));
             if (path.size() == 1 &&
                 ((path[0] == "Time stepping" &&
                   Utilities::trim(entry.substr(0, eq)) ==
                     "Maximum cut-backs") ||
                  (path[0] == "Explicit" &&
-                  Utilities::trim(entry.substr(0, eq)) == "Time step safety") ||
+                  (name == "Time step safety" || name == "Number of steps" ||
+                   name == "Maximum kinetic energy ratio" ||
+                   name == "Maximum force imbalance")) ||
                  (path[0] == "Mesh" &&
                   Utilities::trim(entry.substr(0, eq)) == "Maximum elements")))
               continue;

@@ -228,6 +228,32 @@ namespace densify
         "doc/theory.md); check KE/IE. 0: pure penalty (penetration p / "
         "eps).",
         Patterns::Integer(0));
+      prm.add_parameter(
+        "Maximum kinetic energy ratio",
+        explicit_dynamics.max_kinetic_ratio,
+        "The quasi-static guard of runs whose mass scaling sets the step "
+        "(Mass scaling = selective or uniform): at each station the kinetic "
+        "energy may be at most this fraction of the internal work "
+        "(dimensionless, 0 <= r <= 10; 0: not checked). A run that leaves "
+        "it is not quasi-static: it stops with exit code 1, names the "
+        "entry to raise (Number of steps) and keeps a checkpoint of the "
+        "last station within the limits. Checked once the internal work "
+        "exceeds that of a particle compressed elastically to a strain of "
+        "1e-6. Mass scaling = none (high-speed compaction, where inertia is "
+        "part of the answer) is not checked.",
+        Patterns::Double(0., 10.));
+      prm.add_parameter(
+        "Maximum force imbalance",
+        explicit_dynamics.max_force_imbalance,
+        "The quasi-static guard's second limit: at each station the upper "
+        "punch force may differ from the lower punch force plus the die "
+        "wall's axial force by at most this fraction of the upper punch "
+        "force (dimensionless, 0 <= r <= 10; 0: not checked); a quasi-static "
+        "compact carries the upper punch's load to the lower punch and the "
+        "die wall. Same stop and scope as Maximum kinetic energy ratio; "
+        "checked once the upper punch force exceeds that of a particle "
+        "compressed elastically to a strain of 1e-6 (E D^2 1e-6).",
+        Patterns::Double(0., 10.));
     }
     prm.leave_subsection();
   }

@@ -18,6 +18,52 @@
 
 namespace densify
 {
+  namespace
+  {
+    /// Refuses an upper punch history that reaches the lower punch, or that
+    /// would press the spheres' volume past the die's (relative density
+    /// above 100 %), before anything is meshed.
+    void
+    check_stroke(const Scene                 &scene,
+                 const Parameters            &prm,
+                 const std::vector<Particle> &particles)
+    {
+      // the table is piecewise linear: its largest value in [0, End time]
+      // is at a breakpoint or at the end time
+      const double end    = prm.time.end_time;
+      double       stroke = interpolate(scene.punch_table, end);
+      for (const auto &[t, v] : scene.punch_table)
+        if (t <= end)
+          stroke = std::max(stroke, v);
+      const double       gap = scene.upper_initial - prm.tools.lower_position;
+      std::ostringstream message;
+      message << "Tools/Upper punch/Displacement history: ";
+      if (stroke >= gap)
+        {
+          message << "the stroke of " << stroke
+                  << " mm reaches the lower punch " << gap
+                  << " mm below the upper one: give a stroke below the gap "
+                     "(or stop earlier with Time stepping/End time)";
+          throw std::runtime_error(message.str());
+        }
+      if (!prm.tools.die_enabled)
+        return;
+      const double density =
+        layer_relative_density(particles, prm.tools.die_diameter, gap - stroke);
+      if (density > 1.)
+        {
+          message << "the stroke of " << stroke
+                  << " mm would press the spheres to " << std::fixed
+                  << std::setprecision(1) << 100. * density
+                  << " % relative density (the die holds at most 100 %): "
+                     "give a shorter stroke";
+          throw std::runtime_error(message.str());
+        }
+    }
+  } // namespace
+
+
+
   void
   draw_materials(const std::string     &fractions,
                  const unsigned int     seed,
@@ -255,6 +301,8 @@ namespace densify
         "Tools/Upper punch/Initial position must be above Tools/Lower "
         "punch/Position");
     check_particles(particles, container, 1e-9 * top);
+    if (container.has_lower && container.has_upper)
+      check_stroke(scene, prm, particles);
 
     // unknown material names are input errors too
     for (const Particle &p : particles)
@@ -353,6 +401,27 @@ namespace densify
                    "inverse cube) or Mesh/Refined element size, use fewer "
                    "particles, or raise Mesh/Maximum elements on a machine "
                    "with that memory";
+        throw std::runtime_error(message.str());
+      }
+  }
+
+
+
+  void
+  check_element_size(const Parameters            &prm,
+                     const std::vector<Particle> &particles)
+  {
+    double smallest = std::numeric_limits<double>::max();
+    for (const Particle &p : particles)
+      smallest = std::min(smallest, p.diameter);
+    if (prm.mesh.element_size > smallest)
+      {
+        std::ostringstream message;
+        message << "Mesh/Element size = " << prm.mesh.element_size
+                << " mm is larger than the smallest particle (diameter "
+                << smallest << " mm), which cannot be meshed with it: give "
+                << "at most " << smallest << " mm (a fifth of it, "
+                << smallest / 5 << " mm, for a usable answer)";
         throw std::runtime_error(message.str());
       }
   }

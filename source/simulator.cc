@@ -16,6 +16,7 @@
 #include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
+#include <densify/postprocess/quasi_static_guard.h>
 #include <densify/postprocess/run_log.h>
 #include <densify/scene.h>
 #include <densify/simulator.h>
@@ -611,6 +612,13 @@ namespace densify
     if (!open_error.empty())
       throw std::runtime_error(open_error);
 
+    // the quasi-static guard of explicit runs whose mass scaling sets the
+    // step (Explicit/Maximum kinetic energy ratio, Maximum force imbalance)
+    const QuasiStaticLimits guard_limits = quasi_static_limits();
+    const bool              guard =
+      guard_limits.kinetic_ratio > 0. || guard_limits.force_imbalance > 0.;
+    guard_snapshot = CheckpointSnapshot();
+
     const unsigned int n_steps = prm.time.n_steps;
     for (unsigned int step = first_step; step <= n_steps; ++step)
       {
@@ -729,6 +737,11 @@ namespace densify
         write_failure = first_error(write_failure, comm);
         if (!write_failure.empty())
           throw std::runtime_error(write_failure);
+        if (effects.method == Method::explicit_dynamics)
+          warn_penetration(s);
+        // the station's rows are written, so that they show why it stops
+        if (guard)
+          check_quasi_static(s, guard_limits);
 
         // the share of the work done since the start of this process: the
         // stations, or for explicit runs the physical time, whose steps
@@ -759,9 +772,16 @@ namespace densify
                               comm) > 0;
         const bool stop =
           step < n_steps && (signalled || step == control.stop_after);
+        if (guard && step < n_steps)
+          guard_snapshot = checkpoint_snapshot(step, s.wall_seconds);
         if (stop || (prm.output.checkpoint_interval > 0 && step < n_steps &&
                      step % prm.output.checkpoint_interval == 0))
-          write_checkpoint(step, s.wall_seconds);
+          {
+            if (guard_snapshot.step == step)
+              store_checkpoint(guard_snapshot);
+            else
+              write_checkpoint(step, s.wall_seconds);
+          }
         if (stop)
           {
             pcout << "Stopped after step " << step << "/" << n_steps

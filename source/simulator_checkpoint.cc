@@ -34,7 +34,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 4;
+    constexpr unsigned int checkpoint_version = 5;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -120,6 +120,82 @@ namespace densify
   Simulator::write_checkpoint(const unsigned int step,
                               const double       wall_seconds)
   {
+    store_checkpoint(checkpoint_snapshot(step, wall_seconds));
+  }
+
+
+
+  Simulator::CheckpointSnapshot
+  Simulator::checkpoint_snapshot(const unsigned int step,
+                                 const double       wall_seconds)
+  {
+    TimerOutput::Scope t(timer, "Checkpoint");
+    // the .pvd's records of the graphics written so far
+    const GraphicsWriter::Records &pvd_records = graphics.records();
+
+    CheckpointHeader header;
+    header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
+    header.rank        = this_rank;
+    header.n_cells     = triangulation.n_active_cells();
+    header.n_dofs      = dof_handler.n_dofs();
+    header.fingerprint = prm.fingerprint;
+    for (const Point<3> &v : triangulation.get_vertices())
+      header.vertices += v[0] + v[1] + v[2];
+
+    CheckpointSnapshot snapshot;
+    snapshot.step = step;
+    snapshot.time = current_time;
+    std::ostringstream out(std::ios::binary);
+    {
+      boost::archive::binary_oarchive archive(out);
+      std::vector<double>             solution_values =
+        owned_values(solution, locally_owned);
+      // the load stepper's predictor and increment (implicit method)
+      std::vector<double> increment_values =
+        stepper ? owned_values(stepper->last_increment, locally_owned) :
+                  std::vector<double>(locally_owned.n_elements(), 0.);
+      double       next_increment = stepper ? stepper->next_increment : 0.;
+      double       last_punch_increment = stepper ? stepper->last_travel : 0.;
+      unsigned int last_step            = step;
+      double       wall                 = wall_seconds;
+      double       time                 = current_time;
+      double       upper                = current_upper;
+      archive &header &last_step &time &upper &next_increment
+        &last_punch_increment &wall &solution_values &increment_values
+          &pvd_records;
+      // explicit dynamics: the integrator, the loads' account and the
+      // mass-scaling factors
+      ExplicitDynamics::State dynamics;
+      std::vector<double>     factors;
+      double                  calibration = 1.;
+      std::vector<double>     mode;
+      double                  bound   = calibrated_bound;
+      unsigned int            updates = mass_updates;
+      auto                    work    = explicit_work;
+      if (explicit_dynamics)
+        {
+          dynamics    = explicit_dynamics->state();
+          factors     = lumped_mass->scaling_factors();
+          calibration = lumped_mass->calibration_factor();
+          mode.assign(frequency_mode.begin(), frequency_mode.end());
+        }
+      // the explicit steps the mass scaling was set for
+      unsigned int n_explicit = prm.explicit_dynamics.n_steps;
+      archive &dynamics &work &factors &calibration &bound &updates &mode
+        &n_explicit;
+      // each force term's state (history, multipliers, friction)
+      for (const ForceTerm *term : force_terms())
+        term->write_checkpoint(archive);
+    }
+    snapshot.bytes = out.str();
+    return snapshot;
+  }
+
+
+
+  void
+  Simulator::store_checkpoint(const CheckpointSnapshot &snapshot)
+  {
     TimerOutput::Scope t(timer, "Checkpoint");
     namespace fs         = std::filesystem;
     const fs::path dir   = prm.output.directory;
@@ -139,72 +215,17 @@ namespace densify
     if (!error.empty())
       throw std::runtime_error(error);
 
-    // the .pvd's records of the graphics written so far
-    const GraphicsWriter::Records &pvd_records = graphics.records();
-
-    CheckpointHeader header;
-    header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
-    header.rank        = this_rank;
-    header.n_cells     = triangulation.n_active_cells();
-    header.n_dofs      = dof_handler.n_dofs();
-    header.fingerprint = prm.fingerprint;
-    for (const Point<3> &v : triangulation.get_vertices())
-      header.vertices += v[0] + v[1] + v[2];
-
     const fs::path file =
       fresh / ("rank_" + std::to_string(this_rank) + ".bin");
     errno = 0;
-    try
-      {
-        std::ofstream out(file, std::ios::binary);
-        if (!out)
-          throw std::runtime_error("");
-        {
-          {
-            boost::archive::binary_oarchive archive(out);
-            std::vector<double>             solution_values =
-              owned_values(solution, locally_owned);
-            // the load stepper's predictor and increment (implicit method)
-            std::vector<double> increment_values =
-              stepper ? owned_values(stepper->last_increment, locally_owned) :
-                        std::vector<double>(locally_owned.n_elements(), 0.);
-            double next_increment = stepper ? stepper->next_increment : 0.;
-            double last_punch_increment = stepper ? stepper->last_travel : 0.;
-            unsigned int last_step      = step;
-            double       wall           = wall_seconds;
-            archive &header &last_step &current_time &current_upper
-              &next_increment &last_punch_increment &wall &solution_values
-                &increment_values &pvd_records;
-            // explicit dynamics: the integrator, the loads' account and the
-            // mass-scaling factors
-            ExplicitDynamics::State dynamics;
-            std::vector<double>     factors;
-            double                  calibration = 1.;
-            std::vector<double>     mode;
-            if (explicit_dynamics)
-              {
-                dynamics    = explicit_dynamics->state();
-                factors     = lumped_mass->scaling_factors();
-                calibration = lumped_mass->calibration_factor();
-                mode.assign(frequency_mode.begin(), frequency_mode.end());
-              }
-            archive &dynamics &explicit_work &factors &calibration
-              &calibrated_bound &mass_updates &mode;
-            // each force term's state (history, multipliers, friction)
-            for (const ForceTerm *term : force_terms())
-              term->write_checkpoint(archive);
-          }
-          // complete on disk only once the stream is flushed and closed
-          out.close();
-          if (out.fail())
-            throw std::runtime_error("");
-        }
-      }
-    catch (const std::exception &)
-      {
-        // boost's "output stream error" names neither the file nor the cause
+    {
+      std::ofstream out(file, std::ios::binary);
+      out.write(snapshot.bytes.data(), snapshot.bytes.size());
+      // complete on disk only once the stream is flushed and closed
+      out.close();
+      if (out.fail())
         error = "checkpoint: " + write_error(file.string());
-      }
+    }
     error = first_error(error, comm);
 
     // replace the previous checkpoint only now that the new one is complete
@@ -213,9 +234,9 @@ namespace densify
         const fs::path info_name = fresh / "info.txt";
         errno                    = 0;
         std::ofstream info(info_name);
-        info << "load step " << step << " of " << prm.time.n_steps << ", time "
-             << std::setprecision(10) << current_time << ", written by "
-             << header.n_ranks
+        info << "load step " << snapshot.step << " of " << prm.time.n_steps
+             << ", time " << std::setprecision(10) << snapshot.time
+             << ", written by " << Utilities::MPI::n_mpi_processes(comm)
              << " MPI rank(s); continue with: densify FILE.prm --resume\n";
         info.close();
         if (info.fail())
@@ -245,7 +266,7 @@ namespace densify
           fs::remove_all(fresh, ignored);
         throw std::runtime_error(error);
       }
-    pcout << "  checkpoint written after step " << step << std::endl;
+    pcout << "  checkpoint written after step " << snapshot.step << std::endl;
   }
 
 
@@ -297,6 +318,7 @@ namespace densify
     std::vector<double>     factors;
     double                  calibration = 1.;
     std::vector<double>     mode;
+    unsigned int            n_explicit = 0;
     try
       {
         boost::archive::binary_iarchive archive(in);
@@ -341,7 +363,7 @@ namespace densify
         archive &step &current_time &current_upper &next_increment
           &last_punch_increment &wall &solution_values &increment_values
             &pvd_records &dynamics &explicit_work &factors &calibration
-              &calibrated_bound &mass_updates &mode;
+              &calibrated_bound &mass_updates &mode &n_explicit;
         for (ForceTerm *term : force_terms())
           term->read_checkpoint(archive);
       }
@@ -382,8 +404,19 @@ namespace densify
           throw InputError("--resume: the checkpoint was written by an "
                            "implicit run; resume it with Solver/Method = "
                            "implicit");
-        explicit_dynamics->set_state(dynamics);
-        lumped_mass->set_scaling_factors(factors);
+        // with another Explicit/Number of steps (the advice of a run that
+        // left the quasi-static limits) the mass scaling starts anew for the
+        // new step: the mass set up for it is kept, and the nodes keep their
+        // velocities (a quasi-static motion follows the punch, whatever the
+        // mass)
+        const bool same_steps = n_explicit == prm.explicit_dynamics.n_steps;
+        explicit_dynamics->set_state(dynamics, same_steps);
+        if (same_steps)
+          lumped_mass->set_scaling_factors(factors);
+        else
+          pcout << "Explicit/Number of steps " << prm.explicit_dynamics.n_steps
+                << " (the checkpoint's: " << n_explicit
+                << "): the mass scaling starts anew" << std::endl;
         lumped_mass->set_calibration_factor(calibration);
         AssertDimension(mode.size(), frequency_mode.locally_owned_size());
         std::copy(mode.begin(), mode.end(), frequency_mode.begin());

@@ -5,10 +5,13 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <densify/postprocess/quasi_static_guard.h>
 #include <densify/simulator.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <type_traits>
 
 namespace densify
@@ -336,4 +339,77 @@ namespace densify
 
 
 
+  QuasiStaticLimits
+  Simulator::quasi_static_limits() const
+  {
+    QuasiStaticLimits limits;
+    // high-speed compaction (no mass scaling) has inertia by intent
+    if (effects.method != Method::explicit_dynamics ||
+        effects.mass_scaling == MassScaling::none)
+      return limits;
+    limits.kinetic_ratio   = prm.explicit_dynamics.max_kinetic_ratio;
+    limits.force_imbalance = prm.explicit_dynamics.max_force_imbalance;
+    // the floors: the force and the work of a particle compressed
+    // elastically to a strain of 1e-6 (E D^2 1e-6 and its work over
+    // D 1e-6, for the stiffest, largest particle), far below any
+    // compaction's: a scene at rest has neither forces nor work to compare
+    double force = 0., work = 0.;
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        const double D = particles[p].diameter;
+        const double F = 1e-6 * particle_material[p]->youngs_modulus() * D * D;
+        force          = std::max(force, F);
+        work           = std::max(work, F * 1e-6 * D / 2.);
+      }
+    limits.force_floor = force;
+    limits.work_floor  = work;
+    return limits;
+  }
+
+
+
+  void
+  Simulator::check_quasi_static(const StepStatistics    &s,
+                                const QuasiStaticLimits &limits)
+  {
+    const std::string breach = quasi_static_breach(s, limits);
+    if (breach.empty())
+      return;
+    std::ostringstream text;
+    text << "the explicit run is no longer quasi-static at step " << s.step
+         << " (punch " << s.punch_displacement << " mm): " << breach
+         << "; raise Explicit/Number of steps (now "
+         << prm.explicit_dynamics.n_steps << ")";
+    if (guard_snapshot.bytes.empty())
+      text << "; no earlier station of this run was within the limits, so "
+              "no checkpoint is written";
+    else
+      {
+        store_checkpoint(guard_snapshot);
+        text << "; the last station within them (step " << guard_snapshot.step
+             << ") is in " << prm.output.directory
+             << "/checkpoint/: continue from it with --resume and more steps";
+      }
+    throw std::runtime_error(text.str());
+  }
+
+
+
+  void
+  Simulator::warn_penetration(const StepStatistics &s)
+  {
+    // once per run: an explicit run's penalty leaves the same penetration
+    // station after station
+    if (penetration_warned || !(s.max_penetration > prm.contact.gap_tolerance))
+      return;
+    penetration_warned = true;
+    pcout << "  warning: penetration " << std::setprecision(3)
+          << s.max_penetration
+          << " mm above Contact/Gap tolerance = " << prm.contact.gap_tolerance
+          << " mm at step " << s.step
+          << " (printed once; statistics.csv has max_penetration of every "
+             "step): raise Explicit/Contact multiplier steps from "
+          << prm.explicit_dynamics.multiplier_steps
+          << " (e.g. 200) or Explicit/Contact stiffness" << std::endl;
+  }
 } // namespace densify

@@ -4,9 +4,12 @@
 // 0.4 mm) and quadratic tetrahedra (0.5 mm) give plate forces within 5 % of
 // each other;
 // plain linear tetrahedra are printed for contrast (stiffer: they lock).
-// The discrete answer of the path-dependent law depends on the increments,
-// so each run's cut-backs and retries with the pseudo-transient
-// continuation are printed.
+// The discrete answer of the path-dependent law depends on the increments a
+// run takes (cut-backs, retries with the pseudo-transient continuation),
+// and round-off decides those (another BLAS kernel: P2 115.4 N after 2
+// cut-backs and 1 retry, 115.1 N after 3 retries): the forces are checked
+// within 1 % of their references and go with the paths to stderr, the log
+// that is not compared.
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>
@@ -71,14 +74,21 @@ main(int argc, char **argv)
   const double p2    = force(2, "none", 0.5, path_p2);
   const double p1    = force(1, "none", 0.4, path_p1);
   if (root)
-    std::cout << std::setprecision(4) << "plate force at 30 %: P1 + F-bar "
-              << p1_fb << " N, P2 " << p2 << " N, plain P1 " << p1 << " N"
-              << std::endl
-              << "paths: P1 + F-bar " << path_p1_fb << "; P2 " << path_p2
-              << "; plain P1 " << path_p1 << std::endl
-              << "P1 + F-bar within 5 % of P2: "
-              << testing::yes(std::abs(p1_fb - p2) < 0.05 * p2)
-              << "; plain P1 stiffer than both: "
-              << testing::yes(p1 > p2 && p1 > p1_fb) << std::endl;
+    {
+      std::cerr << std::setprecision(4) << "plate force at 30 %: P1 + F-bar "
+                << p1_fb << " N, P2 " << p2 << " N, plain P1 " << p1 << " N"
+                << std::endl
+                << "paths: P1 + F-bar " << path_p1_fb << "; P2 " << path_p2
+                << "; plain P1 " << path_p1 << std::endl;
+      std::cout << "plate force at 30 % within 1 % of the reference: P1 + "
+                   "F-bar (117.6 N) "
+                << testing::near(p1_fb, 117.6, 0.01) << ", P2 (115.1 N) "
+                << testing::near(p2, 115.1, 0.01) << ", plain P1 (137.7 N) "
+                << testing::near(p1, 137.7, 0.01) << std::endl
+                << "P1 + F-bar within 5 % of P2: "
+                << testing::yes(std::abs(p1_fb - p2) < 0.05 * p2)
+                << "; plain P1 stiffer than both: "
+                << testing::yes(p1 > p2 && p1 > p1_fb) << std::endl;
+    }
   return testing::all_passed ? 0 : 1;
 }

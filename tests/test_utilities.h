@@ -7,6 +7,7 @@
 
 #include <densify/parameters.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -24,6 +25,20 @@ namespace densify
     {
       all_passed = all_passed && ok;
       return ok ? "yes" : "no";
+    }
+
+    /**
+     * "yes" if @p value lies within the relative @p tolerance of
+     * @p reference (remembering a "no" in all_passed). For results that
+     * round-off moves by more than the 1e-4 numdiff reads (a path-dependent
+     * law's answer depends on the increments a solve happens to take): the
+     * test prints the verdict, the value goes to the log.
+     */
+    inline std::string
+    near(const double value, const double reference, const double tolerance)
+    {
+      return yes(std::abs(value - reference) <=
+                 tolerance * std::abs(reference));
     }
 
     /// The source directory (from the DENSIFY_SOURCE_DIR environment variable).

@@ -235,6 +235,13 @@ namespace densify
     /// The contact multipliers follow the pressures over about this many
     /// steps (0: pure penalty).
     unsigned int multiplier_steps = 0;
+    /// Largest kinetic energy of a quasi-static run (mass scaling on) at a
+    /// station, as a fraction of the internal work (0: not checked).
+    double max_kinetic_ratio = 0.1;
+    /// Largest difference between the upper punch force and the lower
+    /// punch's plus the die wall's at a station, as a fraction of the upper
+    /// punch force (0: not checked).
+    double max_force_imbalance = 0.25;
   };
 
   /// Subsection "Output": where and what to write.

@@ -67,6 +67,15 @@ namespace densify
   check_mesh_size(const Parameters &prm, const MeshEstimate &estimate);
 
   /**
+   * Throw std::runtime_error with a one-line message if Mesh/Element size
+   * exceeds the smallest particle's diameter (gmsh cannot mesh a sphere with
+   * larger elements).
+   */
+  void
+  check_element_size(const Parameters            &prm,
+                     const std::vector<Particle> &particles);
+
+  /**
    * Give the particles the materials of the mixture @p fractions
    * ("name:fraction, ..."; fractions >= 0 summing to 1): round(fraction * N)
    * particles each (largest remainders first), which ones drawn by a shuffle

@@ -33,6 +33,7 @@
 #include <densify/parameters.h>
 #include <densify/postprocess/graphics.h>
 #include <densify/postprocess/particle_measures.h>
+#include <densify/postprocess/quasi_static_guard.h>
 #include <densify/postprocess/statistics.h>
 #include <densify/scene.h>
 #include <densify/solvers/linear_solver.h>
@@ -304,6 +305,53 @@ namespace densify
      */
     void
     write_checkpoint(const unsigned int step, const double wall_seconds);
+
+    /// This rank's part of a checkpoint, held in memory.
+    struct CheckpointSnapshot
+    {
+      /// The load step it ends.
+      unsigned int step = 0;
+      /// Its scene time.
+      double time = 0.;
+      /// The serialized state, as write_checkpoint() stores it.
+      std::string bytes;
+    };
+
+    /// The state at the end of load step @p step, serialized in memory (what
+    /// write_checkpoint() writes).
+    CheckpointSnapshot
+    checkpoint_snapshot(const unsigned int step, const double wall_seconds);
+
+    /// Write @p snapshot (every rank its own) to Output/Directory/checkpoint/,
+    /// replacing the previous checkpoint only once the new one is complete.
+    void
+    store_checkpoint(const CheckpointSnapshot &snapshot);
+
+    /// The limits of the quasi-static guard: those of subsection Explicit
+    /// for an explicit run whose mass scaling sets the step, else none.
+    QuasiStaticLimits
+    quasi_static_limits() const;
+
+    /**
+     * Stop the run if station @p s breaks @p limits: store the snapshot of
+     * the last station within them as the checkpoint (if there is one) and
+     * throw an error that names the breach and Explicit/Number of steps.
+     */
+    void
+    check_quasi_static(const StepStatistics    &s,
+                       const QuasiStaticLimits &limits);
+
+    /// Warn once per run when station @p s penetrates by more than
+    /// Contact/Gap tolerance (explicit runs; the implicit load stepper warns
+    /// at each step it cannot meet it).
+    void
+    warn_penetration(const StepStatistics &s);
+
+    /// The last station of an explicit run within the quasi-static limits,
+    /// kept for the checkpoint of a run that leaves them.
+    CheckpointSnapshot guard_snapshot;
+    /// Whether warn_penetration() has warned.
+    bool penetration_warned = false;
 
     /**
      * Load the checkpoint written by write_checkpoint() into the set-up

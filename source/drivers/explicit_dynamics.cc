@@ -21,6 +21,25 @@ namespace densify
 
 
 
+  std::string
+  ExplicitDynamics::remedy() const
+  {
+    std::ostringstream text;
+    if (scaled)
+      // the mass scaling holds the step at Loading time / Number of steps
+      // and adds the mass the safety asks for: a lower safety only adds
+      // mass, and inertia with it
+      text << "raise Explicit/Number of steps (now " << prm.n_steps
+           << "; the mass scaling sets the step, and a lower Explicit/Time "
+              "step safety, now "
+           << prm.safety << ", would only add mass)";
+    else
+      text << "lower Explicit/Time step safety (now " << prm.safety << ")";
+    return text.str();
+  }
+
+
+
   double
   ExplicitDynamics::uniform_time(const double tau) const
   {
@@ -197,10 +216,8 @@ namespace densify
             std::ostringstream text;
             text << "explicit integration failed at t = " << time << " s (step "
                  << n_steps << "): " << e.what()
-                 << "; the run is probably unstable: lower Explicit/Time step "
-                    "safety (now "
-                 << prm.safety
-                 << "); if it fails again near the same stroke, a cell is "
+                 << "; the run is probably unstable: " << remedy()
+                 << "; if it fails again near the same stroke, a cell is "
                     "being crushed (scripts/postprocess/cell_volume.py lists "
                     "the cells' volume ratios; doc/performance.md)";
             throw std::runtime_error(text.str());
@@ -241,10 +258,8 @@ namespace densify
                 std::ostringstream text;
                 text << "explicit integration unstable at t = " << time
                      << " s (step " << n_steps << "): kinetic energy " << ke
-                     << " mJ against " << work_in
-                     << " mJ of work put in; lower Explicit/Time step safety "
-                        "(now "
-                     << prm.safety << ")";
+                     << " mJ against " << work_in << " mJ of work put in; "
+                     << remedy();
                 throw std::runtime_error(text.str());
               }
           }
@@ -298,7 +313,7 @@ namespace densify
 
 
   void
-  ExplicitDynamics::set_state(const State &saved)
+  ExplicitDynamics::set_state(const State &saved, const bool with_mass)
   {
     auto restore = [](const std::vector<double>     &values,
                       TrilinosWrappers::MPI::Vector &v) {
@@ -308,7 +323,8 @@ namespace densify
     restore(saved.velocity, velocity);
     restore(saved.internal, r_internal);
     restore(saved.external, r_external);
-    restore(saved.mass, mass);
+    if (with_mass)
+      restore(saved.mass, mass);
     time       = saved.time;
     last_step  = saved.last_step;
     n_steps    = saved.steps;

@@ -65,6 +65,19 @@ expect "pole springs with friction" "frictionless" "$DENSIFY" good.prm \
 expect "geometric tangent with CG" "Geometric tangent = auto" "$DENSIFY" good.prm \
   --set "Contact/Geometric tangent=true" --set "Solver/Linear solver=cg-amg"
 expect "bad --set syntax" "Subsection/Name=value" "$DENSIFY" good.prm --set "Particles/Diameters"
+# a stroke through the lower punch (the sphere of good.prm stands 2.5 mm
+# high), or one that presses the spheres past the die's volume, before any
+# mesh is built
+expect "stroke beyond the lower punch" "reaches the lower punch" "$DENSIFY" good.prm \
+  --set "Tools/Upper punch/Displacement history=0:0, 1:100"
+expect "stroke past full density" "relative density" "$DENSIFY" good.prm \
+  --set "Tools/Die wall/Enabled=true" --set "Tools/Die wall/Diameter=2.6" \
+  --set "Tools/Upper punch/Displacement history=0:0, 1:1.5"
+# gmsh cannot mesh a sphere with elements larger than it
+expect "element size above the particle" "Mesh/Element size = 100" "$DENSIFY" good.prm \
+  --set "Mesh/Element size=100"
+# a file that opens but cannot be read
+expect "unreadable parameter file" "cannot read parameter file" "$DENSIFY" /proc/self/mem
 # under MPI: every rank stops, one message, no hang
 expect "overlap under mpirun -np 2" "overlap" "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" good.prm \
   --set "Particles/Centres=0,0,1.25; 2,0,1.25"

@@ -172,11 +172,18 @@ namespace densify
     State
     state() const;
 
-    /// Restore a state from state() (after start()).
+    /// Restore a state from state() (after start()); without @p with_mass
+    /// the mass set up by start() is kept (a run resumed with another
+    /// target step).
     void
-    set_state(const State &saved);
+    set_state(const State &saved, const bool with_mass = true);
 
   private:
+    /// What to change when the integration fails: Explicit/Number of steps
+    /// where the mass scaling sets the step, else Explicit/Time step safety.
+    std::string
+    remedy() const;
+
     const ExplicitParameters      prm;
     const double                  scene_end;
     const MPI_Comm                comm;
