@@ -113,6 +113,7 @@ namespace densify
       }
     spec.refined_element_size = prm.mesh.refined_element_size;
     spec.growth               = prm.mesh.growth;
+    spec.pole_flat_radius     = prm.mesh.pole_flat_radius;
     // a progress line where meshing and the setup take a while
     const MeshEstimate estimate = estimate_mesh(prm, particles);
     const bool         large    = estimate.elements > 5e5;

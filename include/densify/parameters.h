@@ -56,6 +56,9 @@ namespace densify
     double refined_element_size = 0.1;
     /// Growth rate of the element size away from refinement points (-).
     double growth = 0.5;
+    /// Radius of the flat faces cut at each particle's poles (0,0,+-R), in
+    /// mm (0: none).
+    double pole_flat_radius = 0.;
     /// Polynomial degree of the displacement (1 or 2).
     unsigned int degree = 1;
     /// "auto", "nodal averaging" (P1 only) or "none".
