@@ -161,20 +161,6 @@ namespace densify
         "more elements.",
         Patterns::Double(1e-3));
       prm.add_parameter(
-        "Pole flat radius",
-        mesh.pole_flat_radius,
-        "Radius of a flat disc that cuts each particle at its two poles "
-        "(the points on the vertical axis through its centre), in mm (>= 0, "
-        "below the particle's radius; 0: none, the poles are mesh "
-        "vertices). A faceted sphere standing on a pole vertex between "
-        "frictionless punches is an unstable equilibrium that Newton must "
-        "find its way off; a flat of about the element size at the pole "
-        "makes it stand on a face. The particle keeps its height D: the "
-        "flats lie at the poles' height and the sphere below them is "
-        "lifted over a band of height a by up to about a^2 / D (a the "
-        "radius, D the diameter).",
-        Patterns::Double(0.));
-      prm.add_parameter(
         "Polynomial degree",
         mesh.degree,
         "Polynomial degree of the displacement on each tetrahedron, 1 or 2 "

@@ -245,14 +245,16 @@ namespace densify
       prm.add_parameter(
         "Maximum force imbalance",
         explicit_dynamics.max_force_imbalance,
-        "The quasi-static guard's second limit: at each station the upper "
-        "punch force may differ from the lower punch force plus the die "
-        "wall's axial force by at most this fraction of the upper punch "
-        "force (dimensionless, 0 <= r <= 10; 0: not checked); a quasi-static "
-        "compact carries the upper punch's load to the lower punch and the "
-        "die wall. Same stop and scope as Maximum kinetic energy ratio; "
-        "checked once the upper punch force exceeds that of a particle "
-        "compressed elastically to a strain of 1e-6 (E D^2 1e-6).",
+        "The quasi-static guard's second limit: the upper punch force may "
+        "differ from the lower punch force plus the die wall's axial force "
+        "by at most this fraction of the upper punch force, each force the "
+        "mean over the last ten stations (so that the vibrations of a loose "
+        "packing cancel and a lasting imbalance does not); dimensionless, 0 "
+        "<= r <= 10; 0: not checked. A quasi-static compact carries the "
+        "upper punch's load to the lower punch and the die wall. Same stop "
+        "and scope as Maximum kinetic energy ratio; checked once the upper "
+        "punch force exceeds that of a particle compressed elastically to a "
+        "strain of 1e-6 (E D^2 1e-6).",
         Patterns::Double(0., 10.));
     }
     prm.leave_subsection();

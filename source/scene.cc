@@ -414,16 +414,6 @@ namespace densify
     double smallest = std::numeric_limits<double>::max();
     for (const Particle &p : particles)
       smallest = std::min(smallest, p.diameter);
-    if (!(prm.mesh.pole_flat_radius < smallest / 2))
-      {
-        std::ostringstream message;
-        message << "Mesh/Pole flat radius = " << prm.mesh.pole_flat_radius
-                << " mm is not below the smallest particle's radius ("
-                << smallest / 2
-                << " mm): give a flat of about the element size at the poles, "
-                   "or 0 for none";
-        throw std::runtime_error(message.str());
-      }
     if (prm.mesh.element_size > smallest)
       {
         std::ostringstream message;

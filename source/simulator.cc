@@ -113,7 +113,6 @@ namespace densify
       }
     spec.refined_element_size = prm.mesh.refined_element_size;
     spec.growth               = prm.mesh.growth;
-    spec.pole_flat_radius     = prm.mesh.pole_flat_radius;
     // a progress line where meshing and the setup take a while
     const MeshEstimate estimate = estimate_mesh(prm, particles);
     const bool         large    = estimate.elements > 5e5;
@@ -615,9 +614,7 @@ namespace densify
 
     // the quasi-static guard of explicit runs whose mass scaling sets the
     // step (Explicit/Maximum kinetic energy ratio, Maximum force imbalance)
-    const QuasiStaticLimits guard_limits = quasi_static_limits();
-    const bool              guard =
-      guard_limits.kinetic_ratio > 0. || guard_limits.force_imbalance > 0.;
+    QuasiStaticGuard guard(quasi_static_limits());
     guard_snapshot = CheckpointSnapshot();
 
     const unsigned int n_steps = prm.time.n_steps;
@@ -741,8 +738,8 @@ namespace densify
         if (effects.method == Method::explicit_dynamics)
           warn_penetration(s);
         // the station's rows are written, so that they show why it stops
-        if (guard)
-          check_quasi_static(s, guard_limits);
+        if (guard.active())
+          check_quasi_static(s, guard);
 
         // the share of the work done since the start of this process: the
         // stations, or for explicit runs the physical time, whose steps
@@ -773,7 +770,7 @@ namespace densify
                               comm) > 0;
         const bool stop =
           step < n_steps && (signalled || step == control.stop_after);
-        if (guard && step < n_steps)
+        if (guard.active() && step < n_steps)
           guard_snapshot = checkpoint_snapshot(step, s.wall_seconds);
         if (stop || (prm.output.checkpoint_interval > 0 && step < n_steps &&
                      step % prm.output.checkpoint_interval == 0))

@@ -369,10 +369,10 @@ namespace densify
 
 
   void
-  Simulator::check_quasi_static(const StepStatistics    &s,
-                                const QuasiStaticLimits &limits)
+  Simulator::check_quasi_static(const StepStatistics &s,
+                                QuasiStaticGuard     &guard)
   {
-    const std::string breach = quasi_static_breach(s, limits);
+    const std::string breach = guard.add(s);
     if (breach.empty())
       return;
     std::ostringstream text;

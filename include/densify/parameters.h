@@ -56,9 +56,6 @@ namespace densify
     double refined_element_size = 0.1;
     /// Growth rate of the element size away from refinement points (-).
     double growth = 0.5;
-    /// Radius of the flat faces cut at each particle's poles (0,0,+-R), in
-    /// mm (0: none).
-    double pole_flat_radius = 0.;
     /// Polynomial degree of the displacement (1 or 2).
     unsigned int degree = 1;
     /// "auto", "nodal averaging" (P1 only) or "none".
@@ -240,11 +237,11 @@ namespace densify
     unsigned int multiplier_steps = 0;
     /// Largest kinetic energy of a quasi-static run (mass scaling on) at a
     /// station, as a fraction of the internal work (0: not checked).
-    double max_kinetic_ratio = 0.1;
+    double max_kinetic_ratio = 0.25;
     /// Largest difference between the upper punch force and the lower
-    /// punch's plus the die wall's at a station, as a fraction of the upper
-    /// punch force (0: not checked).
-    double max_force_imbalance = 0.25;
+    /// punch's plus the die wall's, each a mean over the last ten stations,
+    /// as a fraction of the upper punch force (0: not checked).
+    double max_force_imbalance = 0.5;
   };
 
   /// Subsection "Output": where and what to write.

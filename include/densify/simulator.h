@@ -333,13 +333,13 @@ namespace densify
     quasi_static_limits() const;
 
     /**
-     * Stop the run if station @p s breaks @p limits: store the snapshot of
-     * the last station within them as the checkpoint (if there is one) and
-     * throw an error that names the breach and Explicit/Number of steps.
+     * Stop the run if station @p s breaks the limits of @p guard: store the
+     * snapshot of the last station within them as the checkpoint (if there
+     * is one) and throw an error that names the breach and Explicit/Number
+     * of steps.
      */
     void
-    check_quasi_static(const StepStatistics    &s,
-                       const QuasiStaticLimits &limits);
+    check_quasi_static(const StepStatistics &s, QuasiStaticGuard &guard);
 
     /// Warn once per run when station @p s penetrates by more than
     /// Contact/Gap tolerance (explicit runs; the implicit load stepper warns

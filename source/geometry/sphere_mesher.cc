@@ -134,24 +134,7 @@ namespace densify
     void
     mesh_current_model(const SphereMeshSpec &spec, TetMesh &mesh)
     {
-      const int sphere = gmsh::model::occ::addSphere(0., 0., 0., spec.radius);
-      if (spec.pole_flat_radius > 0.)
-        {
-          // two half-spaces beyond the flats' planes z = +-c cut away (the
-          // flats are lifted to z = +-R once meshed)
-          const double R = spec.radius;
-          const double c =
-            std::sqrt(R * R - spec.pole_flat_radius * spec.pole_flat_radius);
-          const int top = gmsh::model::occ::addBox(-R, -R, c, 2 * R, 2 * R, R);
-          const int bottom =
-            gmsh::model::occ::addBox(-R, -R, -c - R, 2 * R, 2 * R, R);
-          std::vector<std::pair<int, int>>              result;
-          std::vector<std::vector<std::pair<int, int>>> map;
-          gmsh::model::occ::cut({{3, sphere}},
-                                {{3, top}, {3, bottom}},
-                                result,
-                                map);
-        }
+      gmsh::model::occ::addSphere(0., 0., 0., spec.radius);
       gmsh::model::occ::synchronize();
 
       // Options are global in gmsh: set every one that matters on each call.
@@ -218,23 +201,6 @@ namespace densify
           mesh.vertices.emplace_back(coordinates[3 * k],
                                      coordinates[3 * k + 1],
                                      coordinates[3 * k + 2]);
-        }
-
-      if (spec.pole_flat_radius > 0.)
-        {
-          // the flats cut at z = +-c are lifted to the poles z = +-R, and the
-          // band of height a below each flat follows linearly, so that the
-          // particle keeps its height 2R (it stands where the sphere would)
-          const double R  = spec.radius;
-          const double a  = spec.pole_flat_radius;
-          const double c  = std::sqrt(R * R - a * a);
-          const double c0 = std::max(0., c - a);
-          for (Point<3> &x : mesh.vertices)
-            if (std::abs(x[2]) > c0)
-              {
-                const double t = std::min(1., (std::abs(x[2]) - c0) / (c - c0));
-                x[2] += std::copysign(t * (R - c), x[2]);
-              }
         }
 
       mesh.cells.resize(element_tags.size());

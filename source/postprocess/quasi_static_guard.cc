@@ -7,20 +7,22 @@
 
 namespace densify
 {
-  double
-  force_imbalance(const StepStatistics &s)
+  QuasiStaticGuard::QuasiStaticGuard(const QuasiStaticLimits &limits)
+    : limits(limits)
+  {}
+
+
+
+  bool
+  QuasiStaticGuard::active() const
   {
-    if (!(std::abs(s.upper_punch_force) > 0.))
-      return 0.;
-    return std::abs(s.upper_punch_force - s.lower_punch_force -
-                    s.die_wall_force) /
-           std::abs(s.upper_punch_force);
+    return limits.kinetic_ratio > 0. || limits.force_imbalance > 0.;
   }
 
 
 
   std::string
-  quasi_static_breach(const StepStatistics &s, const QuasiStaticLimits &limits)
+  QuasiStaticGuard::add(const StepStatistics &s)
   {
     std::ostringstream text;
     text << std::setprecision(3);
@@ -30,14 +32,26 @@ namespace densify
       text << "KE/IE " << 100. * ratio
            << " % above Explicit/Maximum kinetic energy ratio = "
            << 100. * limits.kinetic_ratio << " %";
-    const double imbalance = force_imbalance(s);
-    if (limits.force_imbalance > 0. &&
-        std::abs(s.upper_punch_force) > limits.force_floor &&
+
+    forces.emplace_back(s.upper_punch_force,
+                        s.lower_punch_force + s.die_wall_force);
+    if (forces.size() > window)
+      forces.pop_front();
+    double upper = 0., carried = 0.;
+    for (const auto &[u, c] : forces)
+      {
+        upper += u;
+        carried += c;
+      }
+    upper /= forces.size();
+    carried /= forces.size();
+    const double imbalance = std::abs(upper - carried) / std::abs(upper);
+    if (limits.force_imbalance > 0. && std::abs(upper) > limits.force_floor &&
         !(imbalance <= limits.force_imbalance))
-      text << (text.tellp() > 0 ? " and " : "") << "F_upper "
-           << s.upper_punch_force << " N against F_lower + F_die "
-           << s.lower_punch_force + s.die_wall_force << " N ("
-           << 100. * imbalance
+      text << (text.tellp() > 0 ? " and " : "") << "F_upper " << upper
+           << " N against F_lower + F_die " << carried
+           << " N (mean of the last " << forces.size()
+           << " station(s): " << 100. * imbalance
            << " % apart, above Explicit/Maximum force imbalance = "
            << 100. * limits.force_imbalance << " %)";
     return text.str();

@@ -37,19 +37,12 @@ namespace densify
     /// Growth of the element size with distance d from the nearest refinement
     /// point: h(d) = min(element_size, refined_element_size + growth * d).
     double growth = 0.5;
-    /// Radius of the flat faces at the sphere's poles (0,0,+-R), in mm (0:
-    /// none, the poles are vertices): the sphere is cut at z = +-c, c =
-    /// sqrt(R^2 - a^2), and the flats are lifted to z = +-R, the band of
-    /// height a below each following linearly, so that the particle keeps
-    /// its height 2R.
-    double pole_flat_radius = 0.;
   };
 
   /**
    * Mesh a sphere centred at the origin with linear tetrahedra (gmsh OCC
    * sphere, Delaunay 3D). Vertices on the surface lie on the sphere; the two
-   * poles (0,0,+-R) are vertices, or, with SphereMeshSpec::pole_flat_radius,
-   * the poles are flat discs at z = +-R. Deterministic for equal input. Throws
+   * poles (0,0,+-R) are vertices. Deterministic for equal input. Throws
    * std::runtime_error with a one-line message if gmsh fails.
    *
    * Not thread-safe (gmsh is not). Initialises gmsh silently on first use
