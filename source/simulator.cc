@@ -615,7 +615,8 @@ namespace densify
     // the quasi-static guard of explicit runs whose mass scaling sets the
     // step (Explicit/Maximum kinetic energy ratio, Maximum force imbalance)
     QuasiStaticGuard guard(quasi_static_limits());
-    guard_snapshot = CheckpointSnapshot();
+    guard_snapshot      = CheckpointSnapshot();
+    guard_snapshot_wall = guard_snapshot_cost = 0.;
 
     const unsigned int n_steps = prm.time.n_steps;
     for (unsigned int step = first_step; step <= n_steps; ++step)
@@ -770,8 +771,17 @@ namespace densify
                               comm) > 0;
         const bool stop =
           step < n_steps && (signalled || step == control.stop_after);
-        if (guard.active() && step < n_steps)
-          guard_snapshot = checkpoint_snapshot(step, s.wall_seconds);
+        // the snapshot for the guard's checkpoint at most every 50 times
+        // its own cost in run time (every station of the light layer, every
+        // few of the paper scene), so that it costs at most 2 %
+        if (guard.active() && step < n_steps &&
+            s.wall_seconds - guard_snapshot_wall >= 50. * guard_snapshot_cost)
+          {
+            Timer snapshot;
+            guard_snapshot      = checkpoint_snapshot(step, s.wall_seconds);
+            guard_snapshot_cost = snapshot.wall_time();
+            guard_snapshot_wall = s.wall_seconds;
+          }
         if (stop || (prm.output.checkpoint_interval > 0 && step < n_steps &&
                      step % prm.output.checkpoint_interval == 0))
           {

@@ -386,8 +386,8 @@ namespace densify
     else
       {
         store_checkpoint(guard_snapshot);
-        text << "; the last station within them (step " << guard_snapshot.step
-             << ") is in " << prm.output.directory
+        text << "; the last station within them that was kept (step "
+             << guard_snapshot.step << ") is in " << prm.output.directory
              << "/checkpoint/: continue from it with --resume and more steps";
       }
     throw std::runtime_error(text.str());

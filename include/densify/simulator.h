@@ -347,9 +347,12 @@ namespace densify
     void
     warn_penetration(const StepStatistics &s);
 
-    /// The last station of an explicit run within the quasi-static limits,
+    /// A recent station of an explicit run within the quasi-static limits,
     /// kept for the checkpoint of a run that leaves them.
     CheckpointSnapshot guard_snapshot;
+    /// Wall time of the run when guard_snapshot was taken, and what taking
+    /// it cost (s).
+    double guard_snapshot_wall = 0., guard_snapshot_cost = 0.;
     /// Whether warn_penetration() has warned.
     bool penetration_warned = false;
 
