@@ -180,6 +180,19 @@ namespace densify
         "otherwise (quadratic tetrahedra do not lock).",
         Patterns::Selection("auto|nodal averaging|none"));
       prm.add_parameter(
+        "Cell volume stabilisation",
+        mesh.cell_volume_stabilisation,
+        "Weight alpha of each cell's own volume change in the nodal-averaged "
+        "F-bar (Volumetric locking remedy = nodal averaging), "
+        "dimensionless, 0 <= alpha <= 1: each corner's material sees "
+        "ln J = (1 - alpha) ln J_patch + alpha ln J_cell, so a cell keeps a "
+        "bulk stiffness alpha kappa against a volume change its patch does "
+        "not share, the mode that lets single cells crush in the dense stage "
+        "(doc/theory.md). 0: the plain F-bar; larger: cells stay sound, but "
+        "a volume constraint per cell comes back (1 is the locking plain "
+        "element).",
+        Patterns::Double(0., 1.));
+      prm.add_parameter(
         "Maximum elements",
         mesh.max_elements,
         "A run refuses a scene whose estimated number of tetrahedra "

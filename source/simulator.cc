@@ -93,7 +93,10 @@ namespace densify
     scene_body_force = scene.body_force;
     body_force_table = std::move(scene.body_force_table);
     for (const Particle &p : particles)
-      particle_material.push_back(create_material(p.material, prm.material));
+      {
+        particle_material.push_back(create_material(p.material, prm.material));
+        cell_volume_weights.push_back(prm.mesh.cell_volume_stabilisation);
+      }
   }
 
 
@@ -224,7 +227,9 @@ namespace densify
       dof_handler,
       particle_material,
       effects.locking == LockingRemedy::nodal_averaging ?
-        std::make_unique<NodalAveraging>(dof_handler, *mapping) :
+        std::make_unique<NodalAveraging>(dof_handler,
+                                         *mapping,
+                                         cell_volume_weights) :
         nullptr,
       prm.mesh.degree);
     bulk_terms = {continuum.get()};

@@ -22,7 +22,8 @@ namespace densify
     lumped_mass = std::make_unique<LumpedMass>(dof_handler,
                                                particle_material,
                                                effects.mass_scaling,
-                                               tangential_ratio);
+                                               tangential_ratio,
+                                               cell_volume_weights);
     explicit_dynamics =
       std::make_unique<ExplicitDynamics>(prm.explicit_dynamics,
                                          prm.time.end_time,

@@ -392,6 +392,9 @@ namespace densify
     std::unique_ptr<Scene>                       given_scene;
     std::vector<Particle>                        particles;
     std::vector<std::shared_ptr<const Material>> particle_material;
+    /// Per particle: the F-bar's weight of the cell's own volume change
+    /// (Mesh/Cell volume stabilisation, NodalAveraging).
+    std::vector<double> cell_volume_weights;
     double                                       upper_initial = 0.;
     std::vector<std::pair<double, double>>       punch_table;
     double                                       h_min = 0.;

@@ -66,10 +66,12 @@ namespace densify
     const DoFHandler<3>                                &dof_handler,
     const std::vector<std::shared_ptr<const Material>> &materials,
     const MassScaling                                   scaling,
-    const double                                        tangential_ratio)
+    const double                                        tangential_ratio,
+    const std::vector<double> &cell_volume_weights)
     : dof_handler(&dof_handler)
     , owned(dof_handler.locally_owned_dofs())
     , materials(materials)
+    , cell_volume_weights(cell_volume_weights)
     , scaling(scaling)
     , spring_ratio(std::max(1., tangential_ratio))
     , factor(dof_handler.get_triangulation().n_active_cells(), 1.)
@@ -303,13 +305,18 @@ namespace densify
           const Material &m  = *materials[cell->material_id()];
           const double    K  = m.bulk_modulus();
           const double    mu = 0.75 * (m.p_wave_modulus() - K);
-          // the mean of the corners' patch-averaged volume changes
+          // the mean of the corners' patch-averaged volume changes,
+          // blended with the cell's own by the stabilisation weight
           double theta = 0.;
           for (const unsigned int v : cell->vertex_indices())
             {
               const types::global_dof_index i = cell->vertex_dof_index(v, 0);
               theta += sums_ghosted(i) / volumes_ghosted(i) / 4.;
             }
+          const double alpha = cell->material_id() < cell_volume_weights.size() ?
+                                 cell_volume_weights[cell->material_id()] :
+                                 0.;
+          theta = (1. - alpha) * theta + alpha * trace(grad[e]);
           const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
           const SymmetricTensor<2, 3> sigma =
             2. * mu * deviator(eps) + K * theta * unit_symmetric_tensor<3>();

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace densify
@@ -101,9 +102,15 @@ namespace densify
 
 
 
-  NodalAveraging::NodalAveraging(const DoFHandler<3> &dof_handler,
-                                 const Mapping<3>    &mapping)
+  NodalAveraging::NodalAveraging(const DoFHandler<3>       &dof_handler,
+                                 const Mapping<3>          &mapping,
+                                 const std::vector<double> &cell_volume_weights)
+    : weights(cell_volume_weights)
   {
+    for (const double alpha : weights)
+      if (!(alpha >= 0. && alpha <= 1.))
+        throw std::runtime_error(
+          "nodal averaging: a cell volume weight outside [0, 1]");
     const FiniteElement<3> &fe = dof_handler.get_fe();
     if (fe.n_dofs_per_cell() != 12 || fe.n_components() != 3)
       throw std::runtime_error(
@@ -144,6 +151,7 @@ namespace densify
           }
         c.volume   = fe_values.JxW(0);
         c.material = cell->material_id();
+        c.centre   = cell->center();
         c.owned    = cell->is_locally_owned();
         for (unsigned int v = 0; v < 4; ++v)
           {
@@ -363,6 +371,34 @@ namespace densify
 
 
 
+  std::string
+  NodalAveraging::inverted(const Cell &c, const double j)
+  {
+    std::ostringstream text;
+    text << "nodal averaging: inverted cell (det F = " << j
+         << " <= 0) in particle " << c.material << " at (" << c.centre
+         << ") mm (reference position)";
+    return text.str();
+  }
+
+
+
+  double
+  blended_volume_measure(const double j_bar,
+                         const double j_cell,
+                         const double alpha,
+                         const bool   finite_strain)
+  {
+    if (alpha == 0.)
+      return j_bar;
+    if (finite_strain)
+      return std::exp((1. - alpha) * std::log(j_bar) +
+                      alpha * std::log(j_cell));
+    return (1. - alpha) * j_bar + alpha * j_cell;
+  }
+
+
+
   Tensor<2, 3>
   fbar_deformation(const Tensor<2, 3> &F,
                    const double        j_bar,
@@ -437,8 +473,7 @@ namespace densify
           {
             s.j = determinant(s.F);
             if (!(s.j > 0.))
-              return "nodal averaging: det F = " + std::to_string(s.j) +
-                     " <= 0 (inverted element)";
+              return inverted(c, s.j);
             const Tensor<2, 3> F_inv_T = transpose(invert(s.F));
             for (unsigned int i = 0; i < 12; ++i)
               {
@@ -489,6 +524,12 @@ namespace densify
         const Material  &material = *materials[c.material];
         const bool       finite   = material.finite_strain();
         const double     w        = c.volume / 4.;
+        // the stabilisation: the corner's volume measure depends on j_a
+        // with the weight theta = 1 - alpha, so every term that came from
+        // d(ln j_a - ln j_e) carries theta (and the second-order ones
+        // theta^2)
+        const double alpha_e = cell_volume_weight(c.material);
+        const double theta   = 1. - alpha_e;
         // t_i = d(ln J)/du_i (finite strain) or d(div u)/du_i
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? s.dj[i] / s.j : s.dj[i]);
@@ -511,8 +552,9 @@ namespace densify
             const unsigned int a = c.vertex[v];
             // Fbar = sc F (finite strain), D the denominator of d(ln j_a)
             double             sc = 1., D = 1.;
-            const Tensor<2, 3> F_bar =
-              fbar_deformation(s.F, j_bar[a], finite, &sc);
+            const double       j_a =
+              blended_volume_measure(j_bar[a], s.j, alpha_e, finite);
+            const Tensor<2, 3> F_bar = fbar_deformation(s.F, j_a, finite, &sc);
             Tensor<2, 3> N;
             if (finite)
               {
@@ -526,7 +568,7 @@ namespace densify
               {
                 // tau = dev tau + p(j_a) I, P = tau Fbar^-T
                 double p_a;
-                material.kirchhoff_pressure(j_bar[a], p_a);
+                material.kirchhoff_pressure(j_a, p_a);
                 Tensor<2, 3> tau = tau_dev;
                 for (unsigned int d = 0; d < 3; ++d)
                   tau[d][d] += p_a;
@@ -556,8 +598,10 @@ namespace densify
                 {
                   return error.what();
                 }
-            // p: Kirchhoff pressure of Fbar (finite) or tr P / 3
-            const double p = sc * scalar_product(P, N) / 3.;
+            // p_F: Kirchhoff pressure of Fbar (finite) or tr P / 3; p its
+            // part conjugate to ln j_a - ln j_e
+            const double p_F = sc * scalar_product(P, N) / 3.;
+            const double p   = theta * p_F;
             for (unsigned int i = 0; i < 12; ++i)
               {
                 r[i] = P[c.component[i]] * c.grad[i];
@@ -577,16 +621,18 @@ namespace densify
                       AN[i][J] += A[i][J][k2][L] * N[k2][L];
                       NA[k2][L] += N[i][J] * A[i][J][k2][L];
                     }
-            const double alpha = scalar_product(NA, N);
+            const double n_a_n = scalar_product(NA, N);
             const double gamma =
-              (finite ? sc * sc * alpha / 9. + p / 3. : alpha / 9.);
+              theta * theta *
+              (finite ? sc * sc * n_a_n / 9. + p_F / 3. : n_a_n / 9.);
             for (unsigned int i = 0; i < 12; ++i)
               {
                 const double a_i = AN[c.component[i]] * c.grad[i];
                 const double b_i = NA[c.component[i]] * c.grad[i];
-                x[i] =
-                  (finite ? sc * sc / 3. * a_i + sc / 3. * r[i] : a_i / 3.);
+                x[i] = theta * (finite ? sc * sc / 3. * a_i + sc / 3. * r[i] :
+                                         a_i / 3.);
                 x_prime[i] =
+                  theta *
                   (finite ? sc * sc / 3. * b_i + sc / 3. * r[i] : b_i / 3.);
                 X[i] += w * x[i];
                 X_prime[i] += w * x_prime[i];

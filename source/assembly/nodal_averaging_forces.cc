@@ -43,8 +43,7 @@ namespace densify
           {
             j = determinant(F);
             if (!(j > 0.))
-              return "nodal averaging: det F = " + std::to_string(j) +
-                     " <= 0 (inverted element)";
+              return inverted(c, j);
             const Tensor<2, 3> F_inv_T = transpose(invert(F));
             inverse_transpose[e]       = F_inv_T;
             for (unsigned int i = 0; i < 12; ++i)
@@ -84,6 +83,8 @@ namespace densify
         const Material               &material = *materials[c.material];
         const bool                    finite   = material.finite_strain();
         const double                  w        = c.volume / 4.;
+        const double alpha_e = cell_volume_weight(c.material);
+        const double theta   = 1. - alpha_e;
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? dj[i] / j : dj[i]);
         cell_residual.fill(0.);
@@ -96,16 +97,17 @@ namespace densify
           {
             const unsigned int a = c.vertex[v];
             // fbar_deformation() with the cell's det F computed once
-            const double       sc = finite ? std::cbrt(j_bar[a] / j) : 1.;
+            const double j_a = blended_volume_measure(j_bar[a], j, alpha_e, finite);
+            const double       sc = finite ? std::cbrt(j_a / j) : 1.;
             const Tensor<2, 3> F_bar =
-              finite ? sc * F : fbar_deformation(F, j_bar[a], false);
+              finite ? sc * F : fbar_deformation(F, j_a, false);
             const Tensor<2, 3> &N = finite ? F : I;
             const double        D = finite ? j_bar[a] : 1.;
             const std::size_t   k = std::size_t(e) * 4 + v;
             if (shared && v > 0)
               {
                 double p_a;
-                material.kirchhoff_pressure(j_bar[a], p_a);
+                material.kirchhoff_pressure(j_a, p_a);
                 Tensor<2, 3> tau = tau_dev;
                 for (unsigned int d = 0; d < 3; ++d)
                   tau[d][d] += p_a;
@@ -132,7 +134,7 @@ namespace densify
                 {
                   return error.what();
                 }
-            const double p = sc * scalar_product(P, N) / 3.;
+            const double p = theta * (sc * scalar_product(P, N) / 3.);
             for (unsigned int i = 0; i < 12; ++i)
               {
                 const double r = P[c.component[i]] * c.grad[i];

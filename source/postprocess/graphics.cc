@@ -155,9 +155,13 @@ namespace densify
               const Material &material = *materials[cell->material_id()];
               if (nodal_averaging)
                 {
-                  const double j_a =
-                    j_bar[cell->vertex_index(nearest_corner[q])];
-                  F = fbar_deformation(F, j_a, material.finite_strain());
+                  const bool   finite = material.finite_strain();
+                  const double j_a    = blended_volume_measure(
+                    j_bar[cell->vertex_index(nearest_corner[q])],
+                    finite ? determinant(F) : trace(F) - 2.,
+                    nodal_averaging->cell_volume_weight(cell->material_id()),
+                    finite);
+                  F = fbar_deformation(F, j_a, finite);
                 }
               const unsigned int k =
                 cell->active_cell_index() * history_per_cell +

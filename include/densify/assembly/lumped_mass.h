@@ -51,14 +51,16 @@ namespace densify
   public:
     /**
      * @p materials by cell material id (particle); @p tangential_ratio the
-     * friction's tangential over normal penalty (0 without friction).
-     * Throws std::runtime_error if the element is not linear or a material
+     * friction's tangential over normal penalty (0 without friction);
+     * @p cell_volume_weights the F-bar's stabilisation weight per material
+     * id (NodalAveraging; empty: 0). Throws std::runtime_error if the element is not linear or a material
      * has no density.
      */
     LumpedMass(const DoFHandler<3>                                &dof_handler,
                const std::vector<std::shared_ptr<const Material>> &materials,
                const MassScaling                                   scaling,
-               const double tangential_ratio);
+               const double              tangential_ratio,
+               const std::vector<double> &cell_volume_weights = {});
 
     /**
      * At displacement @p u (with the values of every DoF of the locally
@@ -112,7 +114,8 @@ namespace densify
      * current configuration (displacement @p u, ghosted) with @p x
      * (ghosted): small-strain Hooke's law with each particle's moduli on
      * the deformed cells, the volume change averaged over each vertex's
-     * patch as in the nodal-averaged F-bar (section "Locking" of
+     * patch and blended with the cell's own by its stabilisation weight as
+     * in the nodal-averaged F-bar (section "Volumetric locking" of
      * doc/theory.md), the stiffness that decides the stable step. It
      * holds no stress: the plastic deformation does not enter as elastic
      * strain, as it would with the finite-strain law on the total
@@ -176,6 +179,8 @@ namespace densify
     /// The locally owned DoFs.
     const IndexSet                                      owned;
     const std::vector<std::shared_ptr<const Material>> &materials;
+    /// Per material id the F-bar's stabilisation weight alpha (NodalAveraging).
+    std::vector<double> cell_volume_weights;
     const MassScaling                                   scaling;
     /// max(1, tangential / normal penalty).
     const double spring_ratio;

@@ -42,6 +42,16 @@ namespace densify
    * consistent J2 tangent), so CG applies. It couples all DoFs of the cells
    * around each vertex (add_sparsity()).
    *
+   * Stabilisation of the cell's own volume change: with a weight alpha per
+   * material, the corner sees the blend
+   * ln j_used = (1 - alpha) ln J_a + alpha ln J_e (at small strain
+   * j_used = (1 - alpha) j_a + alpha j_e) instead of J_a, so that a cell
+   * keeps the bulk stiffness alpha kappa against a volume change of its own
+   * that its patch does not share (the mode that lets single cells crush
+   * under J2 flow; doc/theory.md, "Volumetric locking"). alpha = 0 is the
+   * plain nodal-averaged F-bar, alpha = 1 the plain element. Forces and
+   * tangent remain the exact derivatives of the blended energy.
+   *
    * Every rank holds the whole mesh (parallel::shared::Triangulation without
    * artificial cells) and a solution vector with all DoFs, so the vertex
    * averages are computed over all cells on every rank; the material is
@@ -50,9 +60,22 @@ namespace densify
   class NodalAveraging
   {
   public:
-    /// Precompute shape gradients, volumes and vertex patches of a P1
-    /// vector DoFHandler (FESystem(FE_SimplexP(1), 3)).
-    NodalAveraging(const DoFHandler<3> &dof_handler, const Mapping<3> &mapping);
+    /**
+     * Precompute shape gradients, volumes and vertex patches of a P1 vector
+     * DoFHandler (FESystem(FE_SimplexP(1), 3)). @p cell_volume_weights: the
+     * stabilisation weight alpha in [0, 1] of each material id (see the
+     * class documentation); empty or missing entries: 0.
+     */
+    NodalAveraging(const DoFHandler<3>       &dof_handler,
+                   const Mapping<3>          &mapping,
+                   const std::vector<double> &cell_volume_weights = {});
+
+    /// The stabilisation weight alpha of material id @p material.
+    double
+    cell_volume_weight(const unsigned int material) const
+    {
+      return material < weights.size() ? weights[material] : 0.;
+    }
 
     /// Add the couplings of all DoFs of the cells around every vertex that
     /// touches a locally owned cell.
@@ -126,8 +149,10 @@ namespace densify
       std::array<unsigned int, 4> vertex, slot;
       /// Reference volume (mm^3).
       double volume = 0.;
-      /// Material id (index into the materials).
+      /// Material id (index into the materials; the particle).
       unsigned int material = 0;
+      /// Centre in the reference configuration (mm), for messages.
+      Point<3> centre;
       /// Locally owned?
       bool owned = false;
     };
@@ -164,8 +189,14 @@ namespace densify
     deformation_gradient(const Cell                          &c,
                          const TrilinosWrappers::MPI::Vector &solution);
 
+    /// The message of an inverted cell @p c with volume measure @p j.
+    static std::string
+    inverted(const Cell &c, const double j);
+
     std::vector<Cell>  cells;
     std::vector<Patch> patches;
+    /// Stabilisation weight alpha per material id.
+    std::vector<double> weights;
     /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
     /// tangent terms; per vertex, the averaged volume measure and the
     /// scalars S (pressure) and beta.
@@ -239,6 +270,19 @@ namespace densify
                           const Value                    &value,
                           std::vector<double>            &row) const;
   };
+
+  /**
+   * The volume measure a cell corner hands the material: the blend of the
+   * vertex average @p j_bar and the cell's own @p j_cell with weight
+   * @p alpha, j_bar^(1 - alpha) j_cell^alpha at finite strain and
+   * (1 - alpha) j_bar + alpha j_cell at small strain; exactly @p j_bar for
+   * alpha = 0.
+   */
+  double
+  blended_volume_measure(const double j_bar,
+                         const double j_cell,
+                         const double alpha,
+                         const bool   finite_strain);
 
   /**
    * The modified deformation gradient of the nodal-averaged F-bar at a cell
