@@ -710,6 +710,9 @@ namespace densify
             step, particles, measures, initial_volumes, partners, die_force);
         s.relative_density = density(s.particle_volume, upper);
         s.plastic_work     = continuum->plastic_work(*mapping);
+        const SmallestCellVolume smallest =
+          smallest_cell_volume(dof_handler, *mapping, solution_ghosted);
+        s.min_cell_volume_ratio = smallest.ratio;
         if (effects.method == Method::explicit_dynamics)
           {
             const ExplicitDynamics::Account &a = explicit_account;
@@ -743,6 +746,7 @@ namespace densify
           throw std::runtime_error(write_failure);
         if (effects.method == Method::explicit_dynamics)
           warn_penetration(s);
+        warn_cell_volume(s.step, smallest);
         // the station's rows are written, so that they show why it stops
         if (guard.active())
           check_quasi_static(s, guard);
@@ -810,5 +814,24 @@ namespace densify
           << prm.output.directory << "/" << std::endl;
     timer.print_summary();
     return true;
+  }
+
+
+  void
+  Simulator::warn_cell_volume(const unsigned int        step,
+                              const SmallestCellVolume &smallest)
+  {
+    // once per run: the ratio stays low once a cell has collapsed
+    if (cell_volume_warned || !(smallest.ratio < 0.2))
+      return;
+    cell_volume_warned = true;
+    pcout << "  warning: a cell's volume fell to V/V0 = "
+          << std::setprecision(3) << smallest.ratio << " (below 0.2) at step "
+          << step << " in particle " << smallest.particle << " at ("
+          << smallest.centre
+          << ") mm (reference position; printed once, statistics.csv has "
+             "min_cell_volume_ratio of every step): its forces are biased; "
+             "raise Mesh/Cell volume stabilisation from "
+          << prm.mesh.cell_volume_stabilisation << std::endl;
   }
 } // namespace densify

@@ -34,7 +34,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 5;
+    constexpr unsigned int checkpoint_version = 6;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader

@@ -62,7 +62,7 @@ namespace densify
     std::string locking_remedy = "auto";
     /// Weight alpha of the cell's own volume change in the nodal-averaged
     /// F-bar (0: none, 1: plain elements).
-    double cell_volume_stabilisation = 0.;
+    double cell_volume_stabilisation = 0.03;
     /// Largest estimated number of tetrahedra a run may mesh.
     unsigned int max_elements = 4000000;
   };

@@ -31,6 +31,7 @@
 #include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
+#include <densify/postprocess/cell_volume.h>
 #include <densify/postprocess/graphics.h>
 #include <densify/postprocess/particle_measures.h>
 #include <densify/postprocess/quasi_static_guard.h>
@@ -356,6 +357,14 @@ namespace densify
     /// Whether warn_penetration() has warned.
     bool penetration_warned = false;
 
+    /// Warn once per run when the smallest cell volume ratio at step
+    /// @p step falls below 0.2 (the run goes on).
+    void
+    warn_cell_volume(const unsigned int        step,
+                     const SmallestCellVolume &smallest);
+    /// Whether warn_cell_volume() has warned.
+    bool cell_volume_warned = false;
+
     /**
      * Load the checkpoint written by write_checkpoint() into the set-up
      * system; returns its load step. Throws InputError if there is none or it
@@ -394,10 +403,10 @@ namespace densify
     std::vector<std::shared_ptr<const Material>> particle_material;
     /// Per particle: the F-bar's weight of the cell's own volume change
     /// (Mesh/Cell volume stabilisation, NodalAveraging).
-    std::vector<double> cell_volume_weights;
-    double                                       upper_initial = 0.;
-    std::vector<std::pair<double, double>>       punch_table;
-    double                                       h_min = 0.;
+    std::vector<double>                    cell_volume_weights;
+    double                                 upper_initial = 0.;
+    std::vector<std::pair<double, double>> punch_table;
+    double                                 h_min = 0.;
 
     parallel::shared::Triangulation<3> triangulation;
     std::unique_ptr<FESystem<3>>       fe;

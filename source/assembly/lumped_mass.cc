@@ -67,7 +67,7 @@ namespace densify
     const std::vector<std::shared_ptr<const Material>> &materials,
     const MassScaling                                   scaling,
     const double                                        tangential_ratio,
-    const std::vector<double> &cell_volume_weights)
+    const std::vector<double>                          &cell_volume_weights)
     : dof_handler(&dof_handler)
     , owned(dof_handler.locally_owned_dofs())
     , materials(materials)
@@ -313,9 +313,10 @@ namespace densify
               const types::global_dof_index i = cell->vertex_dof_index(v, 0);
               theta += sums_ghosted(i) / volumes_ghosted(i) / 4.;
             }
-          const double alpha = cell->material_id() < cell_volume_weights.size() ?
-                                 cell_volume_weights[cell->material_id()] :
-                                 0.;
+          const double alpha =
+            cell->material_id() < cell_volume_weights.size() ?
+              cell_volume_weights[cell->material_id()] :
+              0.;
           theta = (1. - alpha) * theta + alpha * trace(grad[e]);
           const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
           const SymmetricTensor<2, 3> sigma =

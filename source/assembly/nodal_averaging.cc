@@ -392,8 +392,7 @@ namespace densify
     if (alpha == 0.)
       return j_bar;
     if (finite_strain)
-      return std::exp((1. - alpha) * std::log(j_bar) +
-                      alpha * std::log(j_cell));
+      return j_cell * std::pow(j_bar / j_cell, 1. - alpha);
     return (1. - alpha) * j_bar + alpha * j_cell;
   }
 
@@ -551,11 +550,11 @@ namespace densify
           {
             const unsigned int a = c.vertex[v];
             // Fbar = sc F (finite strain), D the denominator of d(ln j_a)
-            double             sc = 1., D = 1.;
-            const double       j_a =
+            double       sc = 1., D = 1.;
+            const double j_a =
               blended_volume_measure(j_bar[a], s.j, alpha_e, finite);
             const Tensor<2, 3> F_bar = fbar_deformation(s.F, j_a, finite, &sc);
-            Tensor<2, 3> N;
+            Tensor<2, 3>       N;
             if (finite)
               {
                 N = s.F;

@@ -83,8 +83,8 @@ namespace densify
         const Material               &material = *materials[c.material];
         const bool                    finite   = material.finite_strain();
         const double                  w        = c.volume / 4.;
-        const double alpha_e = cell_volume_weight(c.material);
-        const double theta   = 1. - alpha_e;
+        const double                  alpha_e  = cell_volume_weight(c.material);
+        const double                  theta    = 1. - alpha_e;
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? dj[i] / j : dj[i]);
         cell_residual.fill(0.);
@@ -97,7 +97,8 @@ namespace densify
           {
             const unsigned int a = c.vertex[v];
             // fbar_deformation() with the cell's det F computed once
-            const double j_a = blended_volume_measure(j_bar[a], j, alpha_e, finite);
+            const double j_a =
+              blended_volume_measure(j_bar[a], j, alpha_e, finite);
             const double       sc = finite ? std::cbrt(j_a / j) : 1.;
             const Tensor<2, 3> F_bar =
               finite ? sc * F : fbar_deformation(F, j_a, false);

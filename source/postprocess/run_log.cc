@@ -135,6 +135,7 @@ namespace densify
     if (density)
       out << "  density " << std::setprecision(4) << 100 * s.relative_density
           << " %";
+    out << "  V/V0 min " << std::setprecision(2) << s.min_cell_volume_ratio;
     if (explicit_dynamics)
       out << "  explicit " << s.increments << " steps (dt "
           << std::setprecision(3) << s.time_step << " s)  KE/IE "

@@ -38,7 +38,7 @@ namespace densify
            "upper_punch_friction,lower_punch_friction,pole_force,plastic_work,"
            "explicit_steps,time_step,added_mass,kinetic_energy,internal_work,"
            "friction_work,damping_work,contact_energy,external_work,"
-           "energy_balance,multiplier_work,continuations";
+           "energy_balance,multiplier_work,continuations,min_cell_volume_ratio";
   }
 
 
@@ -66,7 +66,8 @@ namespace densify
         << s.internal_work << ',' << s.friction_work << ',' << s.damping_work
         << ',' << s.contact_energy << ',' << s.external_work << ','
         << s.energy_balance << ',' << s.multiplier_work << ','
-        << s.continuations << '\n';
+        << s.continuations << ',' << std::setprecision(6)
+        << s.min_cell_volume_ratio << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

@@ -1,6 +1,6 @@
 # Hard case: the light layer (seven J2 tin spheres, 0.5 mm mesh) with no
 # friction anywhere and no pole springs, pressed 0.1 mm in 10 steps. Each
-# faceted sphere stands on a pole vertex; near step 9 the ring of nodes
+# faceted sphere stands on a pole vertex; near step 9 or 10 the ring of nodes
 # around it closes on the punch and the upright state stops being stable
 # (the Newton tangent turns indefinite along a tipping mode), so plain
 # Newton cycles between the ring open and closed and fails even at 1/256 of
@@ -8,7 +8,8 @@
 # continuation = fallback, the default) retries such an increment with a
 # pseudo mass on the tangent only, and reaches a tipped equilibrium.
 #   1. With the continuation off (and no cut-backs, to fail fast) the run
-#      fails at step 9: the case is hard.
+#      fails before its last step (at step 9 or 10: the step at which the
+#      ring closes moves with the element's stiffness): the case is hard.
 #   2. With the default it converges on 1 and on 2 ranks, with no NaN, at
 #      191.56 N (measured); the spheres held upright by Contact/Hold poles
 #      on axis = vertical give 186.99 N. The force is compared within 2 %:
@@ -35,12 +36,12 @@ one=$!
 status=$?
 wait $one
 rows=$(tail -n +2 off/statistics.csv 2>/dev/null | wc -l)
-if [ "$status" -eq 0 ] || [ "$rows" -ne 8 ]; then
+if [ "$status" -eq 0 ] || [ "$rows" -ge 10 ]; then
   echo "FAIL without the continuation: exit $status after $rows steps" \
-    "(expected a failure at step 9)"
+    "(expected a failure before step 10 ends)"
   fails=$((fails + 1))
 else
-  echo "ok   without the continuation: fails at step 9 (exit $status)"
+  echo "ok   without the continuation: fails before the last step (exit $status)"
 fi
 check_run one 10 191.56 0.02
 "$MPIEXEC" -np 2 "$DENSIFY" "$SOURCE_DIR/prm/single_layer_sn_light.prm" \

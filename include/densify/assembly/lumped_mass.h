@@ -53,13 +53,13 @@ namespace densify
      * @p materials by cell material id (particle); @p tangential_ratio the
      * friction's tangential over normal penalty (0 without friction);
      * @p cell_volume_weights the F-bar's stabilisation weight per material
-     * id (NodalAveraging; empty: 0). Throws std::runtime_error if the element is not linear or a material
-     * has no density.
+     * id (NodalAveraging; empty: 0). Throws std::runtime_error if the element
+     * is not linear or a material has no density.
      */
     LumpedMass(const DoFHandler<3>                                &dof_handler,
                const std::vector<std::shared_ptr<const Material>> &materials,
                const MassScaling                                   scaling,
-               const double              tangential_ratio,
+               const double               tangential_ratio,
                const std::vector<double> &cell_volume_weights = {});
 
     /**
@@ -181,7 +181,7 @@ namespace densify
     const std::vector<std::shared_ptr<const Material>> &materials;
     /// Per material id the F-bar's stabilisation weight alpha (NodalAveraging).
     std::vector<double> cell_volume_weights;
-    const MassScaling                                   scaling;
+    const MassScaling   scaling;
     /// max(1, tangential / normal penalty).
     const double spring_ratio;
     /// Per active cell: mass-scaling factor, and the stable step with
