@@ -190,10 +190,10 @@ namespace densify
         "not share, the mode that lets single cells crush in the dense stage "
         "(doc/theory.md). 0: the plain F-bar; larger: cells stay sound, but "
         "a volume constraint per cell comes back (1 is the locking plain "
-        "element). The default 0.03 holds the paper scene's smallest V/V0 "
-        "by the explicit method at 0.27 (0.008 with 0) and moves the light "
-        "layer's punch force by at most 0.4 % below 85 % density "
-        "(doc/verification.md, \"Cell volume stabilisation\").",
+        "element). The default keeps the cells of the paper scene's dense "
+        "stage from collapsing and leaves the punch force of looser "
+        "packings almost unchanged (doc/verification.md, \"Cell volume "
+        "stabilisation\").",
         Patterns::Double(0., 1.));
       prm.add_parameter(
         "Maximum elements",
