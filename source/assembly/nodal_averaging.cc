@@ -398,6 +398,26 @@ namespace densify
 
 
 
+  double
+  fbar_scale(const double j_bar,
+             const double j_cell,
+             const double alpha,
+             double      &j_used)
+  {
+    if (alpha == 0.)
+      {
+        j_used = j_bar;
+        return std::cbrt(j_bar / j_cell);
+      }
+    // (j_used / j_cell)^(1/3) = (j_bar / j_cell)^((1 - alpha) / 3): one
+    // power instead of the blend's power and a cube root
+    const double sc = std::pow(j_bar / j_cell, (1. - alpha) / 3.);
+    j_used          = j_cell * sc * sc * sc;
+    return sc;
+  }
+
+
+
   Tensor<2, 3>
   fbar_deformation(const Tensor<2, 3> &F,
                    const double        j_bar,
@@ -550,11 +570,14 @@ namespace densify
           {
             const unsigned int a = c.vertex[v];
             // Fbar = sc F (finite strain), D the denominator of d(ln j_a)
-            double       sc = 1., D = 1.;
-            const double j_a =
-              blended_volume_measure(j_bar[a], s.j, alpha_e, finite);
-            const Tensor<2, 3> F_bar = fbar_deformation(s.F, j_a, finite, &sc);
-            Tensor<2, 3>       N;
+            double sc = 1., D = 1., j_a = 0.;
+            if (finite)
+              sc = fbar_scale(j_bar[a], s.j, alpha_e, j_a);
+            else
+              j_a = blended_volume_measure(j_bar[a], s.j, alpha_e, false);
+            const Tensor<2, 3> F_bar =
+              finite ? sc * s.F : fbar_deformation(s.F, j_a, false);
+            Tensor<2, 3> N;
             if (finite)
               {
                 N = s.F;

@@ -96,10 +96,12 @@ namespace densify
         for (unsigned int v = 0; v < 4; ++v)
           {
             const unsigned int a = c.vertex[v];
-            // fbar_deformation() with the cell's det F computed once
-            const double j_a =
-              blended_volume_measure(j_bar[a], j, alpha_e, finite);
-            const double       sc = finite ? std::cbrt(j_a / j) : 1.;
+            // fbar_scale() with the cell's det F computed once
+            double j_a = 0., sc = 1.;
+            if (finite)
+              sc = fbar_scale(j_bar[a], j, alpha_e, j_a);
+            else
+              j_a = blended_volume_measure(j_bar[a], j, alpha_e, false);
             const Tensor<2, 3> F_bar =
               finite ? sc * F : fbar_deformation(F, j_a, false);
             const Tensor<2, 3> &N = finite ? F : I;

@@ -285,6 +285,19 @@ namespace densify
                          const bool   finite_strain);
 
   /**
+   * The factor sc of the finite-strain F-bar at a cell corner, Fbar = sc F:
+   * sc = (j_used / j_cell)^(1/3) with j_used the blend
+   * blended_volume_measure(@p j_bar, @p j_cell, @p alpha, true), which it
+   * returns in @p j_used (computed as one power; exactly @p j_bar and
+   * cbrt(j_bar / j_cell) for alpha = 0).
+   */
+  double
+  fbar_scale(const double j_bar,
+             const double j_cell,
+             const double alpha,
+             double      &j_used);
+
+  /**
    * The modified deformation gradient of the nodal-averaged F-bar at a cell
    * corner: with the cell's deformation gradient @p F and the vertex average
    * @p j_bar of the volume measure (NodalAveraging::vertex_volume_measures()),
