@@ -1,4 +1,6 @@
 # Bad input gives one clear error line naming the parameter, exit code 2, no crash or hang.
+# (its one 2-rank run stops at the input check: one processor's work)
+# ctest processors: 1
 set -u
 cd "$WORK_DIR"
 fails=0

@@ -1,6 +1,9 @@
 # Output/Directory: empty is refused (it would write into /), by a run and
 # by --validate; one that cannot be written is refused with exit code 2 on
 # one and on two ranks, promptly (no rank waits for another).
+# (its 2-rank runs stop at the output directory check: one processor's
+# work)
+# ctest processors: 1
 set -u
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/expect_error.bash"

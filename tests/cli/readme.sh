@@ -3,6 +3,8 @@
 # scripts it names), and the user-facing texts (README, doc/, prm/ comments,
 # the parameter help of --print-parameters) name no work session and no
 # commit hash: they describe the current state, the git log keeps history.
+# (mpirun is only looked up, never run: one processor)
+# ctest processors: 1
 set -eu
 cd "$WORK_DIR"
 readme="$SOURCE_DIR/README.md"

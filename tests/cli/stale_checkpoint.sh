@@ -8,6 +8,8 @@
 #     solution.pvd every graphics step once, also when the resumed run
 #     writes no graphics;
 #  3. --resume on 2 ranks from a 1-rank checkpoint names the rank counts.
+# (its one 2-rank run stops at the checkpoint check: one processor's work)
+# ctest processors: 1
 set -u
 cd "$WORK_DIR"
 rm -rf out a.log b.log c.log d.log
