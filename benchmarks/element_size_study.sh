@@ -40,10 +40,15 @@ for ((i = 0; i < ${#list[@]}; i += 2)); do
   [ $((i + 1)) -lt ${#list[@]} ] && run "${list[i + 1]}" "$@"
   wait $first
 done
-/usr/bin/python3 - "$out" "${list[*]}" <<'PY'
+/usr/bin/python3 - "$out" "${list[*]}" "$scene" <<'PY'
 import csv, math, re, sys
-out, sizes = sys.argv[1], sys.argv[2].split()
-area = math.pi * 8.07 ** 2 / 4
+out, sizes, scene = sys.argv[1], sys.argv[2].split(), sys.argv[3]
+diameter = 8.07
+for line in open(scene):
+    m = re.match(r"\s*set Diameter\s*=\s*([0-9.]+)", line)
+    if m:
+        diameter = float(m.group(1))
+area = math.pi * diameter ** 2 / 4
 densities, strokes = [80.0, 85.0, 90.0, 92.5, 95.0], [0.96, 1.28]
 def at(rs, x, key, value):
     for a, b in zip(rs, rs[1:]):

@@ -8,10 +8,13 @@
 # OUT/MATERIAL_METHOD.csv (density in %, pressure in MPa).
 # Usage (from the source root):
 #   bash benchmarks/press_to_95.sh OUT STROKE "MATERIALS" [--set ...]...
-# e.g. the light paper layer on the paper's 0.3 mm mesh to 95 %:
-#   bash benchmarks/press_to_95.sh /tmp/p95 1.33 "Sn Fe Cu" \
-#     --set "Mesh/Element size=0.3"
-# STROKE is the upper punch's travel (mm) over the scene's end time; the
+# e.g. the light paper layer on a 0.4 mm mesh to 95 % (doc/verification.md,
+# "Pressed to 95 %"):
+#   bash benchmarks/press_to_95.sh /tmp/p95 1.366 "Sn Fe Cu" \
+#     --set "Mesh/Element size=0.4"
+# STROKE is the upper punch's travel (mm) over the scene's end time: for a
+# density rho of the meshed particles, 2.5 mm - V / (rho die area) with the
+# particle volume V that a run prints as "Initial relative density"; the
 # --set options apply to both methods; EXPLICIT_STEPS (default 20000) sets
 # the explicit run's Explicit/Number of steps and IMPLICIT_STEPS (default
 # 128 per 1.28 mm) the implicit load steps.
