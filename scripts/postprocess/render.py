@@ -40,7 +40,16 @@ def ensure_display():
                                "xvfb and xauth (bash scripts/setup.sh does) or set DISPLAY")
     env = dict(os.environ, DENSIFY_RENDER_NO_XVFB="1")
     command = [xvfb, "-a", "-s", "-screen 0 1600x1200x24", sys.executable] + sys.argv
-    sys.exit(subprocess.call(command, env=env))
+    # VTK aborts (SIGABRT, exit 134) when it cannot connect to the X server
+    # that xvfb-run started, which happens now and then on a loaded machine
+    # (seen under ctest -j2): a fresh server is tried twice more
+    for attempt in range(3):
+        status = subprocess.call(command, env=env)
+        if status != 134:
+            break
+        print(f"render.py: the virtual X server did not accept the connection "
+              f"(attempt {attempt + 1} of 3)", file=sys.stderr)
+    sys.exit(status)
 
 
 def pick_field(grid, requested):

@@ -62,9 +62,17 @@ namespace densify
         for (unsigned int v = 0; v < 4; ++v)
           j_bar[c.vertex[v]] += c.volume * j;
       }
+    // with a cell volume weight, each corner's F-bar factor is one
+    // exponential of logarithms taken once per vertex and once per cell
+    // (the same value as fbar_scale()'s power, to round-off, at a third of
+    // its cost)
+    log_j_bar.resize(patches.size());
     for (unsigned int a = 0; a < patches.size(); ++a)
       if (patches[a].volume > 0.)
-        j_bar[a] /= patches[a].volume;
+        {
+          j_bar[a] /= patches[a].volume;
+          log_j_bar[a] = j_bar[a] > 0. ? std::log(j_bar[a]) : 0.;
+        }
 
     // 2. owned cells: the material at each corner with Fbar(j_a), the
     //    cell's forces, and per vertex the pressure sum S_a
@@ -85,6 +93,7 @@ namespace densify
         const double                  w        = c.volume / 4.;
         const double                  alpha_e  = cell_volume_weight(c.material);
         const double                  theta    = 1. - alpha_e;
+        const double log_j = (finite && alpha_e != 0.) ? std::log(j) : 0.;
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? dj[i] / j : dj[i]);
         cell_residual.fill(0.);
@@ -98,7 +107,13 @@ namespace densify
             const unsigned int a = c.vertex[v];
             // fbar_scale() with the cell's det F computed once
             double j_a = 0., sc = 1.;
-            if (finite)
+            if (finite && alpha_e != 0.)
+              {
+                // (j_a / j)^(1/3) = (j_bar / j)^((1 - alpha) / 3)
+                sc  = std::exp(theta / 3. * (log_j_bar[a] - log_j));
+                j_a = j * sc * sc * sc;
+              }
+            else if (finite)
               sc = fbar_scale(j_bar[a], j, alpha_e, j_a);
             else
               j_a = blended_volume_measure(j_bar[a], j, alpha_e, false);

@@ -594,7 +594,15 @@ namespace densify
                 for (unsigned int a = 0; a < 3; ++a)
                   X_m += best.bary[a] * master.position[a];
                 Tensor<1, 3> u_m, u_m_old;
-                if (plain)
+                if (plain && base.degree == 1)
+                  {
+                    // linear: the shape function of each vertex is its
+                    // barycentric coordinate, zero at the facet's fourth
+                    std::fill(base_phi.begin(), base_phi.end(), 0.);
+                    for (unsigned int a = 0; a < 3; ++a)
+                      base_phi[master.local_vertex[a]] = best.bary[a];
+                  }
+                else if (plain)
                   for (unsigned int b = 0; b < base_phi.size(); ++b)
                     base_phi[b] = base.shape_value(b, xi);
                 for (unsigned int i = 0; i < n_dofs; ++i)

@@ -2,6 +2,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <densify/material/j2_plasticity.h>
+#include <densify/material/symmetric_eigen.h>
 
 #include <algorithm>
 #include <array>
@@ -251,51 +252,29 @@ namespace densify
     // spectral decomposition be_tr = sum_a x_a n_a (x) n_a.
     const Tensor<2, 3> Finv = invert(F);
     const Tensor<2, 3> G    = F * old.Cp_inv;
-    // QL with implicit shifts: orthonormal eigenvectors also for equal
-    // eigenvalues (be = I at rest), a little cheaper than Jacobi rotations
-    // (7.9 instead of 9.0 % of a profile of the paper scene; the hybrid
-    // method was no faster; doc/performance.md, "Assembly kernels")
-    //
-    // Off-diagonal entries below 1e-20 of the trace are dropped: they change
-    // the stress by less than 1e-20 E, far below the law's own round-off
-    // (the logarithmic strain of a stretch resolves 1e-16). deal.II 9.4's
-    // QL iteration returns NaN eigenvectors for off-diagonal entries between
-    // about 1e-150 and 1e-100 (the far field of an explicit run's first
-    // steps has such cells; tests/material_j2_near_identity.cc).
+    // be_tr = sum_a x_a n_a (x) n_a in closed form (symmetric_eigen.h):
+    // orthonormal eigenvectors also for equal eigenvalues (be = I at rest);
+    // off-diagonal entries below 1e-20 of the diagonal are taken as zero,
+    // which changes the stress by less than 1e-20 E, far below the law's
+    // own round-off (the logarithmic strain of a stretch resolves 1e-16)
+    // and keeps gradients down to 1e-300 exact
+    // (tests/material_j2_near_identity.cc, tests/symmetric_eigen.cc)
     const SymmetricTensor<2, 3> be_trial = symmetrize(G * transpose(F));
-    const double                scale    = trace(be_trial);
-    const bool diagonal = std::abs(be_trial[0][1]) <= 1e-20 * scale &&
-                          std::abs(be_trial[0][2]) <= 1e-20 * scale &&
-                          std::abs(be_trial[1][2]) <= 1e-20 * scale;
-    std::array<std::pair<double, Tensor<1, 3>>, 3> eig;
-    if (diagonal)
-      {
-        for (unsigned int a = 0; a < 3; ++a)
-          {
-            eig[a].first     = be_trial[a][a];
-            eig[a].second    = Tensor<1, 3>();
-            eig[a].second[a] = 1.;
-          }
-        // in descending order, as eigenvectors() returns them
-        std::sort(eig.begin(), eig.end(), [](const auto &l, const auto &r) {
-          return l.first > r.first;
-        });
-      }
-    else
-      eig = eigenvectors(be_trial,
-                         SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
-
-    double Q[3][3]; // Q[i][a] = (n_a)_i
-    double x[3], eps[3];
+    double                      x[3], eps[3];
+    double                      Q[3][3]; // Q[i][a] = (n_a)_i
+    {
+      const double be[3][3] = {
+        {be_trial[0][0], be_trial[0][1], be_trial[0][2]},
+        {be_trial[0][1], be_trial[1][1], be_trial[1][2]},
+        {be_trial[0][2], be_trial[1][2], be_trial[2][2]}};
+      symmetric_eigen(be, x, Q);
+    }
     for (unsigned int a = 0; a < 3; ++a)
       {
-        x[a] = eig[a].first;
         if (!(x[a] > 0.))
           throw std::domain_error("J2 plasticity: be is not positive "
                                   "definite (extreme distortion)");
         eps[a] = 0.5 * std::log(x[a]);
-        for (unsigned int i = 0; i < 3; ++i)
-          Q[i][a] = eig[a].second[i];
       }
 
     // Trial Kirchhoff stress in principal logarithmic space.

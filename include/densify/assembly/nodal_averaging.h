@@ -198,10 +198,11 @@ namespace densify
     /// Stabilisation weight alpha per material id.
     std::vector<double> weights;
     /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
-    /// tangent terms; per vertex, the averaged volume measure and the
-    /// scalars S (pressure) and beta.
+    /// tangent terms; per vertex, the averaged volume measure, its
+    /// logarithm (forces() with a cell volume weight) and the scalars S
+    /// (pressure) and beta.
     std::vector<double>    U, U_prime;
-    std::vector<double>    j_bar, S, beta;
+    std::vector<double>    j_bar, log_j_bar, S, beta;
     std::vector<CellState> state;
     /// The kinematics of forces() per cell, in compact arrays: F, F^{-T}
     /// (finite strain), the volume measure j and d j / d u_i.
