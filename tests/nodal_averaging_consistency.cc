@@ -4,7 +4,9 @@
 // finite differences of its internal forces and is symmetric. For the
 // finite-strain J2 law (Sn, plastic at every corner) and small-strain
 // linear elasticity, without and with the stabilisation of the cells' own
-// volume change (weight 0.05).
+// volume change (weight 0.05). The explicit method's force kernel
+// (NodalAveraging::forces()) gives the Newton residual's forces, and the
+// same plastic strains, to round-off from a committed plastic state.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -24,6 +26,7 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/nodal_averaging.h>
 #include <densify/material/j2_plasticity.h>
 
@@ -137,6 +140,34 @@ namespace
       residual.compress(VectorOperation::add);
       if (with_matrix)
         tangent.compress(VectorOperation::add);
+      return residual;
+    }
+
+    /// Internal forces by the explicit method's kernel,
+    /// NodalAveraging::forces(), on plain arrays (the trial states into
+    /// trial).
+    Vec
+    explicit_forces(const Vec &u, const Material &material)
+    {
+      Vec ghosted(owned, relevant, MPI_COMM_WORLD);
+      ghosted = u;
+      AllValues values;
+      values.gather(ghosted);
+      Vec         residual(owned, MPI_COMM_WORLD);
+      LocalForces local;
+      local.start(residual);
+      const std::vector<std::shared_ptr<const Material>> materials = {
+        std::shared_ptr<const Material>(&material, [](const Material *) {})};
+      const std::string failure =
+        averaging->forces(values,
+                          materials,
+                          material.needs_history() ? &committed : nullptr,
+                          material.needs_history() ? &trial : nullptr,
+                          local);
+      if (!failure.empty())
+        throw std::runtime_error(failure);
+      local.finish(residual);
+      residual.compress(VectorOperation::add);
       return residual;
     }
 
@@ -258,6 +289,44 @@ namespace
             << " (relative asymmetry < 1e-12)" << std::endl;
       std::cerr << label << " fd error " << error << " asymmetry " << asymmetry
                 << std::endl;
+    }
+
+    // the explicit kernel against the assembly of the Newton residual, from
+    // a committed state of the random deformation above to a second one
+    {
+      block.forces(block.displacement(F0, 0.02), material, false);
+      block.committed = block.trial;
+      Tensor<2, 3> F1 = F0;
+      F1[0][0] -= 0.02;
+      F1[1][2] += 0.01;
+      const Vec u         = block.displacement(F1, 0.02, 11);
+      Vec       reference = block.forces(u, material, false);
+      const std::vector<MaterialState> reference_states = block.trial;
+      const Vec    kernel = block.explicit_forces(u, material);
+      const double scale  = reference.l2_norm();
+      reference -= kernel;
+      const double error = reference.l2_norm() / scale;
+      double       state_error = 0., eps_max = 0.;
+      for (unsigned int k = 0; k < block.trial.size(); ++k)
+        {
+          state_error = std::max(state_error,
+                                 std::abs(block.trial[k].eps_p -
+                                          reference_states[k].eps_p));
+          eps_max     = std::max(eps_max, reference_states[k].eps_p);
+        }
+      state_error = Utilities::MPI::max(state_error, MPI_COMM_WORLD);
+      eps_max     = Utilities::MPI::max(eps_max, MPI_COMM_WORLD);
+      out() << "  explicit kernel = Newton residual from a committed state: "
+            << yes(error < 1e-10) << " (relative difference < 1e-10)"
+            << std::endl;
+      if (material.needs_history())
+        out() << "  explicit kernel's plastic strains = the residual's: "
+              << yes(state_error <= 1e-10 * eps_max) << " (to 1e-10 of "
+              << "the largest)" << std::endl;
+      std::cerr << label << " explicit kernel difference " << error
+                << " plastic strain difference " << state_error << " of "
+                << eps_max << std::endl;
+      block.committed.assign(block.committed.size(), MaterialState());
     }
   }
 } // namespace

@@ -562,7 +562,7 @@ namespace densify
         // Kirchhoff stress, shared by all four (see the declaration)
         double     p_dummy;
         const bool shared = shared_corners && tangent == nullptr && finite &&
-                            material.kirchhoff_pressure(1., p_dummy);
+                            material.kirchhoff_pressure(0., p_dummy);
         Tensor<2, 3> tau_dev, F_inv_T;
         if (shared)
           F_inv_T = transpose(invert(s.F));
@@ -590,7 +590,7 @@ namespace densify
               {
                 // tau = dev tau + p(j_a) I, P = tau Fbar^-T
                 double p_a;
-                material.kirchhoff_pressure(j_a, p_a);
+                material.kirchhoff_pressure(std::log(j_a), p_a);
                 Tensor<2, 3> tau = tau_dev;
                 for (unsigned int d = 0; d < 3; ++d)
                   tau[d][d] += p_a;

@@ -17,10 +17,11 @@ namespace densify
     std::vector<MaterialState>                         *trial,
     LocalForces                                        &residual)
   {
-    // the operations of assemble() without a tangent and with shared
-    // corners, in the same order up to the patch terms, which are gathered
-    // per cell (the same sums in another order: forces equal to round-off);
-    // what only the tangent needs is left out
+    // the operations of assemble() without a tangent: the same kinematics
+    // and patch terms; for laws whose corners share the Kirchhoff deviator
+    // (J2) the corner terms summed in closed form (step 2), so the forces
+    // equal assemble()'s residual to round-off
+    // (tests/nodal_averaging_consistency.cc)
 
     // 1. kinematics of the cells around the vertices of owned cells and
     //    their vertex averages
@@ -48,8 +49,10 @@ namespace densify
             inverse_transpose[e]       = F_inv_T;
             for (unsigned int i = 0; i < 12; ++i)
               {
-                const Tensor<1, 3> h = F_inv_T * c.grad[i];
-                dj[i]                = j * h[c.component[i]];
+                // j (F^{-T} grad N_i)[c_i]
+                const Tensor<1, 3> &g = c.grad[i];
+                const Tensor<1, 3> &f = F_inv_T[c.component[i]];
+                dj[i] = j * (f[0] * g[0] + f[1] * g[1] + f[2] * g[2]);
               }
           }
         else
@@ -62,10 +65,8 @@ namespace densify
         for (unsigned int v = 0; v < 4; ++v)
           j_bar[c.vertex[v]] += c.volume * j;
       }
-    // with a cell volume weight, each corner's F-bar factor is one
-    // exponential of logarithms taken once per vertex and once per cell
-    // (the same value as fbar_scale()'s power, to round-off, at a third of
-    // its cost)
+    // the logarithms of the vertex averages, once per vertex: each corner's
+    // F-bar factor and pressure come from them and the cell's ln j
     log_j_bar.resize(patches.size());
     for (unsigned int a = 0; a < patches.size(); ++a)
       if (patches[a].volume > 0.)
@@ -93,15 +94,71 @@ namespace densify
         const double                  w        = c.volume / 4.;
         const double                  alpha_e  = cell_volume_weight(c.material);
         const double                  theta    = 1. - alpha_e;
-        const double log_j = (finite && alpha_e != 0.) ? std::log(j) : 0.;
+        const double log_j = finite ? std::log(j) : 0.;
+        // one return mapping per cell: the deviator of the Kirchhoff stress,
+        // shared by all four corners (see assemble())
+        double     p_dummy;
+        const bool shared = finite && material.kirchhoff_pressure(0., p_dummy);
+        if (shared)
+          {
+            // The corners' stresses tau_a = tau_dev + p_a I differ in the
+            // pressure alone, p_a at ln j_a = ln j + theta (ln j_bar_a -
+            // ln j). With h_i = F^{-T} grad N_i and t_i = h_i[c_i], the
+            // corner terms w (sc P_a[c_i] . grad N_i - theta p_a t_i) of the
+            // general path below sum to
+            //   V tau_dev[c_i] . h_i + w alpha (sum_a p_a) h_i[c_i]
+            //   = (M grad N_i)[c_i],  M = (V tau_dev + w alpha sum_a p_a I) F^{-T}
+            // (P_a = tau_a (sc F)^{-T}, P_a : F = tr tau_a / sc): one return
+            // mapping, four pressures and one 3x3 product a cell.
+            const std::size_t     k0 = std::size_t(e) * 4;
+            SymmetricTensor<2, 3> tau_dev;
+            try
+              {
+                material.kirchhoff_deviator(
+                  F,
+                  committed ? &(*committed)[k0] : nullptr,
+                  trial ? &(*trial)[k0] : nullptr,
+                  tau_dev);
+              }
+            catch (const std::exception &error)
+              {
+                return error.what();
+              }
+            if (trial)
+              for (unsigned int v = 1; v < 4; ++v)
+                (*trial)[k0 + v] = (*trial)[k0];
+            double p_sum = 0.;
+            for (unsigned int v = 0; v < 4; ++v)
+              {
+                const unsigned int a = c.vertex[v];
+                double             p_a;
+                material.kirchhoff_pressure(log_j +
+                                              theta * (log_j_bar[a] - log_j),
+                                            p_a);
+                p_sum += p_a;
+                S[a] += w * theta * p_a / j_bar[a];
+              }
+            const Tensor<2, 3> &F_inv_T = inverse_transpose[e];
+            double              M[3][3];
+            for (unsigned int r = 0; r < 3; ++r)
+              for (unsigned int J_ = 0; J_ < 3; ++J_)
+                M[r][J_] = c.volume * (tau_dev[r][0] * F_inv_T[0][J_] +
+                                       tau_dev[r][1] * F_inv_T[1][J_] +
+                                       tau_dev[r][2] * F_inv_T[2][J_]) +
+                           w * alpha_e * p_sum * F_inv_T[r][J_];
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                const double      *m = M[c.component[i]];
+                const Tensor<1, 3> &g = c.grad[i];
+                residual.add(c.dofs[i], m[0] * g[0] + m[1] * g[1] + m[2] * g[2]);
+              }
+            continue;
+          }
+
+        // the general path: a return mapping at each corner
         for (unsigned int i = 0; i < 12; ++i)
           t[i] = (finite ? dj[i] / j : dj[i]);
         cell_residual.fill(0.);
-        // one return mapping per cell: the deviator of the first corner's
-        // Kirchhoff stress, shared by all four (see assemble())
-        double     p_dummy;
-        const bool shared = finite && material.kirchhoff_pressure(1., p_dummy);
-        Tensor<2, 3> tau_dev;
         for (unsigned int v = 0; v < 4; ++v)
           {
             const unsigned int a = c.vertex[v];
@@ -109,7 +166,6 @@ namespace densify
             double j_a = 0., sc = 1.;
             if (finite && alpha_e != 0.)
               {
-                // (j_a / j)^(1/3) = (j_bar / j)^((1 - alpha) / 3)
                 sc  = std::exp(theta / 3. * (log_j_bar[a] - log_j));
                 j_a = j * sc * sc * sc;
               }
@@ -122,36 +178,17 @@ namespace densify
             const Tensor<2, 3> &N = finite ? F : I;
             const double        D = finite ? j_bar[a] : 1.;
             const std::size_t   k = std::size_t(e) * 4 + v;
-            if (shared && v > 0)
+            try
               {
-                double p_a;
-                material.kirchhoff_pressure(j_a, p_a);
-                Tensor<2, 3> tau = tau_dev;
-                for (unsigned int d = 0; d < 3; ++d)
-                  tau[d][d] += p_a;
-                P = (1. / sc) * tau * inverse_transpose[e];
-                if (trial)
-                  (*trial)[k] = (*trial)[k - v];
+                const MaterialState *old =
+                  committed ? &(*committed)[k] : nullptr;
+                MaterialState *now = trial ? &(*trial)[k] : nullptr;
+                material.stress(F_bar, old, now, P);
               }
-            else
-              try
-                {
-                  const MaterialState *old =
-                    committed ? &(*committed)[k] : nullptr;
-                  MaterialState *now = trial ? &(*trial)[k] : nullptr;
-                  material.stress(F_bar, old, now, P);
-                  if (shared)
-                    {
-                      tau_dev          = P * transpose(F_bar);
-                      const double p_0 = trace(tau_dev) / 3.;
-                      for (unsigned int d = 0; d < 3; ++d)
-                        tau_dev[d][d] -= p_0;
-                    }
-                }
-              catch (const std::exception &error)
-                {
-                  return error.what();
-                }
+            catch (const std::exception &error)
+              {
+                return error.what();
+              }
             const double p = theta * (sc * scalar_product(P, N) / 3.);
             for (unsigned int i = 0; i < 12; ++i)
               {

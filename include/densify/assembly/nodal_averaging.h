@@ -109,11 +109,13 @@ namespace densify
 
     /**
      * The internal forces alone, for explicit dynamics: add them at
-     * @p solution (all DoFs' values) to @p residual. The same forces, to the
-     * last bit, as assemble() without a tangent and with shared corners
-     * (source/assembly/nodal_averaging_forces.cc), read from and written to
-     * plain arrays. Returns an empty string or the message of the first
-     * material failure, as assemble().
+     * @p solution (all DoFs' values) to @p residual. The same forces as
+     * assemble() without a tangent, to round-off
+     * (tests/nodal_averaging_consistency.cc); for laws whose corners share
+     * the Kirchhoff deviator (Material::kirchhoff_deviator()) one return
+     * mapping a cell and the corner terms summed in closed form
+     * (source/assembly/nodal_averaging_forces.cc). Returns an empty string
+     * or the message of the first material failure, as assemble().
      */
     std::string
     forces(const AllValues                                    &solution,

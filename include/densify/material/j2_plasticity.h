@@ -184,11 +184,19 @@ namespace densify
 
     /// Hencky's K ln J; true.
     bool
-    kirchhoff_pressure(const double J, double &p) const override
+    kirchhoff_pressure(const double log_J, double &p) const override
     {
-      p = kappa * std::log(J);
+      p = kappa * log_J;
       return true;
     }
+
+    /// The deviator of the return mapping's Kirchhoff stress and the
+    /// updated state (the same as stress()'s, without P); true.
+    bool
+    kirchhoff_deviator(const Tensor<2, 3>    &F,
+                       const MaterialState   *committed,
+                       MaterialState         *trial,
+                       SymmetricTensor<2, 3> &tau_dev) const override;
 
     /// The integral of sigma_y from 0 to the state's eps_p (MPa).
     double
@@ -219,6 +227,39 @@ namespace densify
     hardening_modulus(const double eps_p) const;
 
   private:
+    /// The trial state and the radial return at one point, shared by
+    /// compute() and kirchhoff_deviator().
+    struct TrialReturn
+    {
+      /// The committed state (a virgin one if none was given).
+      const J2State *old = nullptr;
+      /// G = F Cp^{-1}.
+      Tensor<2, 3> G;
+      /// Eigenvalues x_a of the trial be = G F^T, descending, and their
+      /// eigenvectors Q[i][a] = (n_a)_i.
+      double x[3], Q[3][3];
+      /// Principal logarithmic strains, their trace and deviator.
+      double eps[3], tr_eps = 0., e_dev[3];
+      /// Trial Kirchhoff deviator (principal), its squared norm and von
+      /// Mises value.
+      double s_trial[3], s_norm2 = 0., q_trial = 0.;
+      /// Whether the step yields, its plastic multiplier and the factor
+      /// 1 - 3 mu dg / q_trial of the radial return (1 if elastic).
+      bool   plastic = false;
+      double dg = 0., factor = 1.;
+    };
+
+    /// Trial state, spectral decomposition and radial return at @p F.
+    TrialReturn
+    trial_return(const Tensor<2, 3> &F, const MaterialState *committed) const;
+
+    /// The updated state: Cp^{-1} = F^{-1} be F^{-T} with the returned be,
+    /// and eps_p (the committed state if the step is elastic).
+    void
+    update_state(const Tensor<2, 3> &F,
+                 const TrialReturn  &r,
+                 MaterialState      &trial) const;
+
     /// The return mapping; the tangent into @p A unless it is nullptr.
     void
     compute(const Tensor<2, 3>  &F,

@@ -113,11 +113,29 @@ namespace densify
      * a deviator of the isochoric part of F and the history, with isochoric
      * plastic flow (then corners of a cell that differ only in their volume
      * ratio share the deviator and the updated state): set @p p to the
-     * Kirchhoff pressure at volume ratio @p J (MPa) and return true. Other
-     * laws return false.
+     * Kirchhoff pressure at the volume ratio J with ln J = @p log_J (MPa)
+     * and return true (the logarithm, which the F-bar kernels have at hand,
+     * spares an exponential and a logarithm a corner). Other laws return
+     * false.
      */
     virtual bool
-    kirchhoff_pressure(const double /*J*/, double & /*p*/) const
+    kirchhoff_pressure(const double /*log_J*/, double & /*p*/) const
+    {
+      return false;
+    }
+
+    /**
+     * For laws with kirchhoff_pressure(): the deviator @p tau_dev of the
+     * Kirchhoff stress at @p F (MPa), which the isochoric part of F and the
+     * history decide, and the updated state @p trial, without the first
+     * Piola-Kirchhoff stress or the tangent (the explicit force kernel,
+     * NodalAveraging::forces()); returns true. Other laws return false.
+     */
+    virtual bool
+    kirchhoff_deviator(const Tensor<2, 3> & /*F*/,
+                       const MaterialState * /*committed*/,
+                       MaterialState * /*trial*/,
+                       SymmetricTensor<2, 3> & /*tau_dev*/) const
     {
       return false;
     }
