@@ -13,6 +13,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -64,24 +65,55 @@ namespace
    * variables) is a singleton: Open MPI would start a helper daemon for it
    * and probe every network transport, about 0.4 s of a 0.8 s start. Such a
    * process talks to nobody, so it is told to do neither: an isolated
-   * singleton that sends only to itself (Open MPI's MCA
-   * variables; other MPI libraries ignore them). A variable the user has
-   * set is left alone.
+   * singleton that sends only to itself (Open MPI's MCA variables; other
+   * MPI libraries ignore them). Isolated singletons all name their session
+   * directory jf.0 under one directory per user and host, and one that
+   * ends removes what another that starts is creating (Open MPI issue
+   * 3818; seen as "orte_init failed" under ctest -j2): each gets a
+   * directory of its own for it, removed when the process ends. A
+   * variable the user has set is left alone.
    */
-  void
-  prefer_lean_singleton_start()
+  class LeanSingletonStart
   {
-    for (const char *launcher : {"OMPI_COMM_WORLD_SIZE",
-                                 "PMIX_RANK",
-                                 "PMI_RANK",
-                                 "PMI_SIZE",
-                                 "MPI_LOCALNRANKS"})
-      if (std::getenv(launcher) != nullptr)
-        return;
-    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
-    setenv("OMPI_MCA_pml", "ob1", 0);
-    setenv("OMPI_MCA_btl", "self", 0);
-  }
+  public:
+    LeanSingletonStart()
+    {
+      for (const char *launcher : {"OMPI_COMM_WORLD_SIZE",
+                                   "PMIX_RANK",
+                                   "PMI_RANK",
+                                   "PMI_SIZE",
+                                   "MPI_LOCALNRANKS"})
+        if (std::getenv(launcher) != nullptr)
+          return;
+      setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+      setenv("OMPI_MCA_pml", "ob1", 0);
+      setenv("OMPI_MCA_btl", "self", 0);
+      if (std::getenv("OMPI_MCA_orte_tmpdir_base") == nullptr)
+        {
+          const char *tmp  = std::getenv("TMPDIR");
+          std::string base = (tmp != nullptr && *tmp != '\0') ? tmp : "/tmp";
+          std::string name = base + "/densify-mpi-XXXXXX";
+          if (mkdtemp(name.data()) != nullptr)
+            {
+              directory = name;
+              setenv("OMPI_MCA_orte_tmpdir_base", directory.c_str(), 1);
+            }
+        }
+    }
+
+    ~LeanSingletonStart()
+    {
+      if (!directory.empty())
+        {
+          std::error_code ignored;
+          std::filesystem::remove_all(directory, ignored);
+        }
+    }
+
+  private:
+    /// The session directory's base of this process (empty if none).
+    std::string directory;
+  };
 
 
 
@@ -127,7 +159,8 @@ int
 main(int argc, char **argv)
 {
   using namespace densify;
-  prefer_lean_singleton_start();
+  // destroyed after mpi: the session directory goes after MPI_Finalize
+  const LeanSingletonStart         lean_start;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
   const bool         root = rank == 0;
