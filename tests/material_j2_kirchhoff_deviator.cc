@@ -11,6 +11,8 @@
 // yield strain, which carries the strain's round-off of about 1e-16).
 #include <densify/material/j2_plasticity.h>
 
+#include "test_utilities.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,13 +23,7 @@ using namespace densify;
 
 namespace
 {
-  /// A portable pseudo-random number in [-1, 1].
-  double
-  uniform(std::uint64_t &state)
-  {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) * 0x1.0p-52 - 1.;
-  }
+  using testing::uniform;
 
   Tensor<2, 3>
   random_gradient(std::uint64_t &state, const double size)

@@ -17,6 +17,8 @@
 #include <densify/material/j2_plasticity.h>
 #include <densify/material/symmetric_eigen.h>
 
+#include "test_utilities.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -28,14 +30,7 @@ using namespace densify;
 
 namespace
 {
-  /// A portable pseudo-random number in [-1, 1] (the same on every
-  /// compiler and library).
-  double
-  uniform(std::uint64_t &state)
-  {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) * 0x1.0p-52 - 1.;
-  }
+  using testing::uniform;
 
   /// A random rotation (Rodrigues, angle up to pi about a random axis).
   Tensor<2, 3>

@@ -8,6 +8,7 @@
 #include <densify/parameters.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -16,6 +17,16 @@ namespace densify
 {
   namespace testing
   {
+    /// A pseudo-random number in [-1, 1] from the 64-bit linear congruential
+    /// generator @p state: the same sequence with every compiler and
+    /// standard library (std::uniform_real_distribution's is not).
+    inline double
+    uniform(std::uint64_t &state)
+    {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(state >> 11) * 0x1.0p-52 - 1.;
+    }
+
     /// Set when any check fails, so that the test also fails by exit code.
     inline bool all_passed = true;
 

@@ -19,7 +19,7 @@ namespace densify
 
     /// The product A B of two commuting symmetric matrices (polynomials in
     /// one matrix), which is symmetric.
-    Sym
+    inline Sym
     commuting_product(const Sym &A, const Sym &B)
     {
       return {{A[0] * B[0] + A[3] * B[3] + A[4] * B[4],
@@ -496,14 +496,23 @@ namespace densify
           *trial = old;
         else
           {
-            // be = d^(1/3) exp(2 eps_e_dev), 2 eps_e_dev = factor dev L;
+            // be = d^(1/3) exp(2 eps_e_dev), 2 eps_e_dev = factor dev L,
+            // = d^(1/3) (I + E) exp(-tr L / 3) exp((factor - 1) dev L)
+            // (all are functions of E and commute): the last exponential
+            // is that of the step's plastic strain, a few terms;
             // Cp^{-1} = F^{-1} be F^{-T}
             Sym M;
             for (unsigned int k = 0; k < 6; ++k)
-              M[k] = factor * L[k];
-            Sym b = exp_series(M, frobenius(M));
+              M[k] = (factor - 1.) * L[k];
+            Sym bbar = E;
+            for (unsigned int k = 0; k < 3; ++k)
+              bbar[k] += 1.;
+            Sym          b = commuting_product(bbar,
+                                      exp_series(M, std::abs(factor - 1.) *
+                                                      frobenius(L)));
+            const double c = scale * std::exp(-tr_L);
             for (unsigned int k = 0; k < 6; ++k)
-              b[k] *= scale;
+              b[k] *= c;
             const Tensor<2, 3> Finv = invert(F);
             double             FB[3][3]; // F^{-1} be
             for (unsigned int I = 0; I < 3; ++I)
