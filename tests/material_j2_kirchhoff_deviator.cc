@@ -64,9 +64,9 @@ namespace
           error = std::max(error, std::abs(tau_dev[i][j] - reference));
           size  = std::max(size, std::abs(tau[i][j]));
         }
-    const auto   be = symmetrize(F * committed.Cp_inv * transpose(F));
-    const auto   x  = eigenvalues(be);
-    double       state_error = 0.;
+    const auto be          = symmetrize(F * committed.Cp_inv * transpose(F));
+    const auto x           = eigenvalues(be);
+    double     state_error = 0.;
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         state_error = std::max(state_error,

@@ -305,7 +305,7 @@ namespace
       const Vec    kernel = block.explicit_forces(u, material);
       const double scale  = reference.l2_norm();
       reference -= kernel;
-      const double error = reference.l2_norm() / scale;
+      const double error       = reference.l2_norm() / scale;
       double       state_error = 0., eps_max = 0.;
       for (unsigned int k = 0; k < block.trial.size(); ++k)
         {

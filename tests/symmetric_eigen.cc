@@ -54,8 +54,10 @@ namespace
 
   /// R diag(d) R^T.
   SymmetricTensor<2, 3>
-  rotated_diagonal(const Tensor<2, 3> &R, const double d0, const double d1,
-                   const double d2)
+  rotated_diagonal(const Tensor<2, 3> &R,
+                   const double        d0,
+                   const double        d1,
+                   const double        d2)
   {
     Tensor<2, 3> D;
     D[0][0] = d0;
@@ -124,7 +126,7 @@ namespace
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
         {
-          orthogonality[i][j] = -(i == j);
+          orthogonality[i][j]  = -(i == j);
           reconstruction[i][j] = -a[i][j];
           for (unsigned int k = 0; k < 3; ++k)
             {
@@ -154,13 +156,13 @@ namespace
           ok = ok && std::abs(x[k] - xq[k]) <= 1e-13 * size;
         if (positive)
           {
-            const auto log_of = [](const double v) { return std::log(v); };
+            const auto log_of     = [](const double v) { return std::log(v); };
             const Tensor<2, 3> L  = isotropic(x, Q, log_of);
             const Tensor<2, 3> Lq = isotropic(xq, Qq, log_of);
             // round-off of x_min is 1e-16 size, of its logarithm that over
             // x_min
-            ok = ok && max_abs(L - Lq) <=
-                         1e-12 * max_abs(Lq) + 1e-14 * size / x[2];
+            ok = ok &&
+                 max_abs(L - Lq) <= 1e-12 * max_abs(Lq) + 1e-14 * size / x[2];
           }
       }
     ++tally.cases;
@@ -177,8 +179,10 @@ namespace
   /// J2Plasticity's Kirchhoff stress tau = P F^T for F from a virgin state
   /// against the radial return of perfect plasticity computed with QL.
   void
-  check_stress(const J2Plasticity &material, const J2Parameters &prm,
-               const Tensor<2, 3> &F, Tally &tally)
+  check_stress(const J2Plasticity &material,
+               const J2Parameters &prm,
+               const Tensor<2, 3> &F,
+               Tally              &tally)
   {
     const double  kappa = prm.E / (3. * (1. - 2. * prm.nu));
     const double  mu    = prm.E / (2. * (1. + prm.nu));
@@ -217,8 +221,8 @@ namespace
     // both resolve each principal logarithmic strain to the round-off of
     // its stretch, 1e-16 x_max / x_a, which the moduli carry into the
     // stress: 1e-14 E x_max / x_min bounds that
-    if (!(max_abs(tau - tau_ql) <= 1e-12 * (prm.sigma0 + max_abs(tau_ql)) +
-                                     1e-14 * prm.E * x[0] / x[2]))
+    if (!(max_abs(tau - tau_ql) <=
+          1e-12 * (prm.sigma0 + max_abs(tau_ql)) + 1e-14 * prm.E * x[0] / x[2]))
       {
         ++tally.failed;
         std::cerr << "stress differs for F = " << F << ": "
@@ -232,18 +236,28 @@ namespace
 int
 main()
 {
-  std::uint64_t state = 2024;
+  std::uint64_t state  = 2024;
   bool          all_ok = true;
   const auto    report = [&](const std::string &what, const Tally &tally) {
     std::cout << what << ": " << tally.cases << " cases, "
-              << (tally.failed == 0 ? "all agree" : "SOME DIFFER")
-              << std::endl;
+              << (tally.failed == 0 ? "all agree" : "SOME DIFFER") << std::endl;
     all_ok = all_ok && tally.failed == 0;
   };
 
   // be = F F^T for F = I + g M, M random with entries in [-1, 1]
-  for (const double g : {1e-300, 1e-200, 1e-131, 1e-100, 1e-50, 1e-16, 1e-12,
-                         1e-8, 1e-4, 1e-2, 0.1, 0.5, 1.})
+  for (const double g : {1e-300,
+                         1e-200,
+                         1e-131,
+                         1e-100,
+                         1e-50,
+                         1e-16,
+                         1e-12,
+                         1e-8,
+                         1e-4,
+                         1e-2,
+                         0.1,
+                         0.5,
+                         1.})
     {
       Tally tally;
       for (unsigned int n = 0; n < 200; ++n)

@@ -94,7 +94,7 @@ namespace densify
         const double                  w        = c.volume / 4.;
         const double                  alpha_e  = cell_volume_weight(c.material);
         const double                  theta    = 1. - alpha_e;
-        const double log_j = finite ? std::log(j) : 0.;
+        const double                  log_j    = finite ? std::log(j) : 0.;
         // one return mapping per cell: the deviator of the Kirchhoff stress,
         // shared by all four corners (see assemble())
         double     p_dummy;
@@ -107,18 +107,19 @@ namespace densify
             // corner terms w (sc P_a[c_i] . grad N_i - theta p_a t_i) of the
             // general path below sum to
             //   V tau_dev[c_i] . h_i + w alpha (sum_a p_a) h_i[c_i]
-            //   = (M grad N_i)[c_i],  M = (V tau_dev + w alpha sum_a p_a I) F^{-T}
+            //   = (M grad N_i)[c_i],  M = (V tau_dev + w alpha sum_a p_a I)
+            //   F^{-T}
             // (P_a = tau_a (sc F)^{-T}, P_a : F = tr tau_a / sc): one return
             // mapping, four pressures and one 3x3 product a cell.
             const std::size_t     k0 = std::size_t(e) * 4;
             SymmetricTensor<2, 3> tau_dev;
             try
               {
-                material.kirchhoff_deviator(
-                  F,
-                  committed ? &(*committed)[k0] : nullptr,
-                  trial ? &(*trial)[k0] : nullptr,
-                  tau_dev);
+                material.kirchhoff_deviator(F,
+                                            committed ? &(*committed)[k0] :
+                                                        nullptr,
+                                            trial ? &(*trial)[k0] : nullptr,
+                                            tau_dev);
               }
             catch (const std::exception &error)
               {
@@ -148,9 +149,10 @@ namespace densify
                            w * alpha_e * p_sum * F_inv_T[r][J_];
             for (unsigned int i = 0; i < 12; ++i)
               {
-                const double      *m = M[c.component[i]];
+                const double       *m = M[c.component[i]];
                 const Tensor<1, 3> &g = c.grad[i];
-                residual.add(c.dofs[i], m[0] * g[0] + m[1] * g[1] + m[2] * g[2]);
+                residual.add(c.dofs[i],
+                             m[0] * g[0] + m[1] * g[1] + m[2] * g[2]);
               }
             continue;
           }

@@ -331,16 +331,15 @@ namespace densify
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = i; j < 3; ++j)
           {
-            be[i][j] = r.G[i][0] * F[j][0] + r.G[i][1] * F[j][1] +
-                       r.G[i][2] * F[j][2];
+            be[i][j] =
+              r.G[i][0] * F[j][0] + r.G[i][1] * F[j][1] + r.G[i][2] * F[j][2];
             if (j > i)
               {
                 // symmetrised as deal.II's symmetrize() does
-                const double other = r.G[j][0] * F[i][0] +
-                                     r.G[j][1] * F[i][1] +
+                const double other = r.G[j][0] * F[i][0] + r.G[j][1] * F[i][1] +
                                      r.G[j][2] * F[i][2];
-                be[i][j]           = 0.5 * (be[i][j] + other);
-                be[j][i]           = be[i][j];
+                be[i][j] = 0.5 * (be[i][j] + other);
+                be[j][i] = be[i][j];
               }
           }
       symmetric_eigen(be, r.x, r.Q);
@@ -363,7 +362,7 @@ namespace densify
       }
     r.q_trial           = std::sqrt(1.5 * r.s_norm2);
     const double sy_old = yield_stress(r.old->eps_p);
-    r.plastic = (r.q_trial - sy_old > 1e-10 * sy_old + 1e-14 * mu);
+    r.plastic           = (r.q_trial - sy_old > 1e-10 * sy_old + 1e-14 * mu);
 
     // Radial return: s = (1 - 3 mu dg / q_trial) s_trial.
     if (r.plastic)
@@ -468,8 +467,8 @@ namespace densify
       }
 
     // s_trial = 2 mu dev(1/2 ln bbar)
-    Sym          L      = log_series(E, rho);
-    const double tr_L   = (L[0] + L[1] + L[2]) / 3.;
+    Sym          L       = log_series(E, rho);
+    const double tr_L    = (L[0] + L[1] + L[2]) / 3.;
     double       s_norm2 = 0.;
     for (unsigned int k = 0; k < 6; ++k)
       {
@@ -507,23 +506,22 @@ namespace densify
             Sym bbar = E;
             for (unsigned int k = 0; k < 3; ++k)
               bbar[k] += 1.;
-            Sym          b = commuting_product(bbar,
-                                      exp_series(M, std::abs(factor - 1.) *
-                                                      frobenius(L)));
-            const double c = scale * std::exp(-tr_L);
+            Sym b = commuting_product(
+              bbar, exp_series(M, std::abs(factor - 1.) * frobenius(L)));
+            const double volumetric = scale * std::exp(-tr_L);
             for (unsigned int k = 0; k < 6; ++k)
-              b[k] *= c;
-            const Tensor<2, 3> Finv = invert(F);
-            double             FB[3][3]; // F^{-1} be
+              b[k] *= volumetric;
+            // entry (i, j) of a Sym
+            constexpr unsigned int index[3][3] = {{0, 3, 4},
+                                                  {3, 1, 5},
+                                                  {4, 5, 2}};
+            const Tensor<2, 3>     Finv        = invert(F);
+            double                 FB[3][3]; // F^{-1} be
             for (unsigned int I = 0; I < 3; ++I)
               for (unsigned int j = 0; j < 3; ++j)
-                {
-                  const unsigned int k0 = (j == 0 ? 0 : j == 1 ? 3 : 4),
-                                     k1 = (j == 0 ? 3 : j == 1 ? 1 : 5),
-                                     k2 = (j == 0 ? 4 : j == 1 ? 5 : 2);
-                  FB[I][j] = Finv[I][0] * b[k0] + Finv[I][1] * b[k1] +
-                             Finv[I][2] * b[k2];
-                }
+                FB[I][j] = Finv[I][0] * b[index[0][j]] +
+                           Finv[I][1] * b[index[1][j]] +
+                           Finv[I][2] * b[index[2][j]];
             for (unsigned int I = 0; I < 3; ++I)
               for (unsigned int J_ = I; J_ < 3; ++J_)
                 {
@@ -548,7 +546,7 @@ namespace densify
                         Tensor<2, 3>        &P,
                         Tensor<4, 3>        *A) const
   {
-    const TrialReturn   r = trial_return(F, committed);
+    const TrialReturn   r    = trial_return(F, committed);
     const Tensor<2, 3>  Finv = invert(F);
     const Tensor<2, 3> &G    = r.G;
     const double(&x)[3]      = r.x;

@@ -31,8 +31,8 @@ namespace densify
   inline void
   symmetric_eigen(const double a[3][3], double values[3], double vectors[3][3])
   {
-    const double scale = std::max(
-      {std::abs(a[0][0]), std::abs(a[1][1]), std::abs(a[2][2])});
+    const double scale =
+      std::max({std::abs(a[0][0]), std::abs(a[1][1]), std::abs(a[2][2])});
     const double off2 =
       a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
     unsigned int order[3] = {0, 1, 2};
@@ -47,13 +47,13 @@ namespace densify
             n[k][i] = (i == k);
         }
     };
-    const double q = (a[0][0] + a[1][1] + a[2][2]) / 3.;
+    const double q       = (a[0][0] + a[1][1] + a[2][2]) / 3.;
     const double d[3][3] = {{a[0][0] - q, a[0][1], a[0][2]},
                             {a[0][1], a[1][1] - q, a[1][2]},
                             {a[0][2], a[1][2], a[2][2] - q}};
-    const double p = std::sqrt((d[0][0] * d[0][0] + d[1][1] * d[1][1] +
-                                d[2][2] * d[2][2] + 2. * off2) /
-                               6.);
+    const double p       = std::sqrt(
+      (d[0][0] * d[0][0] + d[1][1] * d[1][1] + d[2][2] * d[2][2] + 2. * off2) /
+      6.);
     if ((std::abs(a[0][1]) <= 1e-20 * scale &&
          std::abs(a[0][2]) <= 1e-20 * scale &&
          std::abs(a[1][2]) <= 1e-20 * scale) ||
@@ -77,8 +77,8 @@ namespace densify
         const double mu_max = 2. * p * std::cos(phi);
         const double mu_min = 2. * p * std::cos(phi + 2.0943951023931957);
         const double mu_mid = -mu_max - mu_min;
-        const double mu_s = (mu_max - mu_mid >= mu_mid - mu_min) ? mu_max :
-                                                                  mu_min;
+        const double mu_s =
+          (mu_max - mu_mid >= mu_mid - mu_min) ? mu_max : mu_min;
 
         // 2. its eigenvector: the longest cross product of rows of d - mu_s I
         const double m[3][3] = {{d[0][0] - mu_s, d[0][1], d[0][2]},
@@ -88,10 +88,10 @@ namespace densify
         for (unsigned int r0 = 0; r0 < 3; ++r0)
           {
             const unsigned int r1 = (r0 + 1) % 3;
-            const double       c[3] = {m[r0][1] * m[r1][2] - m[r0][2] * m[r1][1],
-                                 m[r0][2] * m[r1][0] - m[r0][0] * m[r1][2],
-                                 m[r0][0] * m[r1][1] - m[r0][1] * m[r1][0]};
-            const double       c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+            const double c[3]     = {m[r0][1] * m[r1][2] - m[r0][2] * m[r1][1],
+                                     m[r0][2] * m[r1][0] - m[r0][0] * m[r1][2],
+                                     m[r0][0] * m[r1][1] - m[r0][1] * m[r1][0]};
+            const double c2       = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
             if (c2 > best)
               {
                 best = c2;
@@ -113,10 +113,9 @@ namespace densify
         {
           const unsigned int i1 = (axis + 1) % 3, i2 = (axis + 2) % 3;
           // u = e_axis x n[0], normalised
-          u[i1]             = -n[0][i2];
-          u[i2]             = n[0][i1];
-          const double inv_norm =
-            1. / std::sqrt(u[i1] * u[i1] + u[i2] * u[i2]);
+          u[i1]                 = -n[0][i2];
+          u[i2]                 = n[0][i1];
+          const double inv_norm = 1. / std::sqrt(u[i1] * u[i1] + u[i2] * u[i2]);
           u[i1] *= inv_norm;
           u[i2] *= inv_norm;
         }
@@ -138,7 +137,7 @@ namespace densify
         if (m_uw != 0.)
           {
             const double theta = (m_ww - m_uu) / (2. * m_uw);
-            t = (theta >= 0. ? 1. : -1.) /
+            t                  = (theta >= 0. ? 1. : -1.) /
                 (std::abs(theta) + std::sqrt(1. + theta * theta));
             c = 1. / std::sqrt(1. + t * t);
             s = t * c;
