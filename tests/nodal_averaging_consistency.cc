@@ -316,11 +316,12 @@ namespace
         }
       state_error = Utilities::MPI::max(state_error, MPI_COMM_WORLD);
       eps_max     = Utilities::MPI::max(eps_max, MPI_COMM_WORLD);
-      out() << "  explicit kernel = Newton residual from a committed state: "
+      out() << "  explicit kernel = implicit assembly, from a stored plastic "
+               "state: "
             << yes(error < 1e-10) << " (relative difference < 1e-10)"
             << std::endl;
       if (material.needs_history())
-        out() << "  explicit kernel's plastic strains = the residual's: "
+        out() << "  explicit kernel's plastic strains = the assembly's: "
               << yes(state_error <= 1e-10 * eps_max) << " (to 1e-10 of "
               << "the largest)" << std::endl;
       std::cerr << label << " explicit kernel difference " << error

@@ -231,7 +231,7 @@ namespace densify
     /// compute() and kirchhoff_deviator().
     struct TrialReturn
     {
-      /// The committed state (a virgin one if none was given).
+      /// The state of the last converged step (a virgin one if none).
       const J2State *old = nullptr;
       /// G = F Cp^{-1}.
       Tensor<2, 3> G;
@@ -254,7 +254,7 @@ namespace densify
     trial_return(const Tensor<2, 3> &F, const MaterialState *committed) const;
 
     /// The updated state: Cp^{-1} = F^{-1} be F^{-T} with the returned be,
-    /// and eps_p (the committed state if the step is elastic).
+    /// and eps_p (the last converged state if the step is elastic).
     void
     update_state(const Tensor<2, 3> &F,
                  const TrialReturn  &r,
