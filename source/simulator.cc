@@ -16,6 +16,7 @@
 #include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
+#include <densify/postprocess/compaction_curve.h>
 #include <densify/postprocess/quasi_static_guard.h>
 #include <densify/postprocess/run_log.h>
 #include <densify/scene.h>
@@ -709,7 +710,21 @@ namespace densify
           write_failure = particle_writer->write(
             step, particles, measures, initial_volumes, partners, die_force);
         s.relative_density = density(s.particle_volume, upper);
-        s.plastic_work     = continuum->plastic_work(*mapping);
+        {
+          const DieStresses stress =
+            die_stresses(s.upper_punch_force,
+                         s.lower_punch_force,
+                         s.die_wall_radial_force,
+                         prm.tools.die_enabled ? prm.tools.die_diameter : 0.,
+                         prm.tools.lower_enabled && prm.tools.upper_enabled ?
+                           upper - prm.tools.lower_position :
+                           0.);
+          s.upper_punch_stress = stress.upper_punch;
+          s.lower_punch_stress = stress.lower_punch;
+          s.die_wall_pressure  = stress.die_wall;
+          s.radial_axial_ratio = stress.radial_axial_ratio;
+        }
+        s.plastic_work = continuum->plastic_work(*mapping);
         const SmallestCellVolume smallest =
           smallest_cell_volume(dof_handler, *mapping, solution_ghosted);
         s.min_cell_volume_ratio = smallest.ratio;
@@ -809,6 +824,19 @@ namespace densify
             return false;
           }
       }
+    // the field's constants of the whole loading curve (the rows of earlier
+    // runs of a resumed one included)
+    if (has_density && statistics_writer)
+      try
+        {
+          pcout << compaction_summary(
+            read_loading_curve(statistics_name,
+                               upper_initial - prm.tools.lower_position));
+        }
+      catch (const std::exception &)
+        {
+          // a statistics.csv of an older version: no summary
+        }
     pcout << "Finished " << n_steps << " steps in "
           << format_seconds(wall_before + wall.wall_time()) << "; results in "
           << prm.output.directory << "/" << std::endl;

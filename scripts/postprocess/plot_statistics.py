@@ -10,6 +10,10 @@ not matter) and writes into OUTPUT_DIR (or --out):
                lower_punch_force_N, die_wall_force_N (one row per load step)
   density.png  relative density (%) against punch stroke (mm)
   forces.png   upper punch, lower punch and die-wall forces (N) against stroke
+  compaction.png  relative density against the upper punch's mean stress
+               (MPa), and the Heckel plot ln(1/(1 - D)) against it with the
+               line Densify's summary fits over the upper half of the
+               pressure range (only for runs with a die and both punches)
 
 Stroke is the column punch_displacement (downward travel of the upper
 punch). relative_density is nan when the scene has no die; the density plot
@@ -92,6 +96,63 @@ def plot(curves, out_dir):
     plt.close(fig)
 
 
+def heckel_line(pressure, density):
+    """Least-squares K, A of ln(1/(1 - D)) = K P + A over P >= half the largest
+    (the fit of Densify's run summary), or None with fewer than 3 points."""
+    top = max(pressure)
+    points = [(p, math.log(1.0 / (1.0 - d))) for p, d in zip(pressure, density)
+              if p > 0 and p >= 0.5 * top and 0 < d < 1]
+    n = len(points)
+    if n < 3:
+        return None
+    mx = sum(p for p, _ in points) / n
+    my = sum(y for _, y in points) / n
+    sxx = sum((p - mx) ** 2 for p, _ in points)
+    if sxx <= 0:
+        return None
+    k = sum((p - mx) * (y - my) for p, y in points) / sxx
+    return k, my - k * mx
+
+
+def plot_compaction(directory, out_dir):
+    """Write compaction.png; returns its name, or None if the run has no
+    punch stresses (no die, or a statistics.csv without the column)."""
+    rows = read_csv(output_file(directory, "statistics.csv"))
+    if "upper_punch_stress" not in rows[0]:
+        return None
+    pressure = [to_float(r["upper_punch_stress"]) for r in rows]
+    density = [to_float(r["relative_density"]) for r in rows]
+    if any(math.isnan(v) for v in pressure + density):
+        return None
+    matplotlib = require("matplotlib", "python3-matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=120)
+    left.plot(pressure, [100 * d for d in density], "o-", markersize=3)
+    left.set_xlabel("upper punch stress (MPa)")
+    left.set_ylabel("relative density (%)")
+    left.set_title("Pressure and density")
+    heckel = [math.log(1.0 / (1.0 - d)) if 0 < d < 1 else math.nan for d in density]
+    right.plot(pressure, heckel, "o", markersize=3, label="run")
+    line = heckel_line(pressure, density)
+    if line:
+        k, a = line
+        ps = [p for p in pressure if p >= 0.5 * max(pressure)]
+        right.plot([min(ps), max(ps)], [k * min(ps) + a, k * max(ps) + a], "-",
+                   label=f"K = {k:.4g} 1/MPa, A = {a:.4g}")
+        right.legend()
+    right.set_xlabel("upper punch stress P (MPa)")
+    right.set_ylabel("ln(1/(1 - D))")
+    right.set_title("Heckel plot")
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "compaction.png"))
+    plt.close(fig)
+    return "compaction.png"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("directory", help="Densify output directory (Output/Directory)")
@@ -103,10 +164,12 @@ def main():
         os.makedirs(out_dir, exist_ok=True)
         write_csv(curves, os.path.join(out_dir, "curves.csv"))
         plot(curves, out_dir)
+        compaction = plot_compaction(args.directory, out_dir)
     except PostprocessError as exc:
         fail(str(exc))
     n = len(curves["stroke_mm"])
-    print(f"wrote curves.csv, density.png, forces.png ({n} steps) into {out_dir}")
+    extra = f", {compaction}" if compaction else ""
+    print(f"wrote curves.csv, density.png, forces.png{extra} ({n} steps) into {out_dir}")
 
 
 if __name__ == "__main__":

@@ -38,7 +38,9 @@ namespace densify
            "upper_punch_friction,lower_punch_friction,pole_force,plastic_work,"
            "explicit_steps,time_step,added_mass,kinetic_energy,internal_work,"
            "friction_work,damping_work,contact_energy,external_work,"
-           "energy_balance,multiplier_work,continuations,min_cell_volume_ratio";
+           "energy_balance,multiplier_work,continuations,min_cell_volume_ratio,"
+           "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
+           "radial_axial_ratio";
   }
 
 
@@ -67,7 +69,9 @@ namespace densify
         << ',' << s.contact_energy << ',' << s.external_work << ','
         << s.energy_balance << ',' << s.multiplier_work << ','
         << s.continuations << ',' << std::setprecision(6)
-        << s.min_cell_volume_ratio << '\n';
+        << s.min_cell_volume_ratio << ',' << std::setprecision(10)
+        << s.upper_punch_stress << ',' << s.lower_punch_stress << ','
+        << s.die_wall_pressure << ',' << s.radial_axial_ratio << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

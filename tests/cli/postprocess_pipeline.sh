@@ -38,6 +38,7 @@ check_png() {  # file, minimum size in bytes
 echo "== plot_statistics.py"
 "$python" "$scripts/plot_statistics.py" out --out plots
 check_png plots/density.png 10000
+check_png plots/compaction.png 10000
 check_png plots/forces.png 10000
 head -n 1 plots/curves.csv | grep -q "^stroke_mm,relative_density_percent,upper_punch_force_N,lower_punch_force_N,die_wall_force_N$"
 [ "$(wc -l < plots/curves.csv)" -eq 3 ] || { echo "FAIL: curves.csv should have 2 steps" >&2; exit 1; }

@@ -81,6 +81,13 @@ namespace densify
     /// The smallest own volume ratio V/V0 of any cell at the end of the
     /// step (smallest_cell_volume()).
     double min_cell_volume_ratio = 1.;
+    /// Mean axial stress of the upper and of the lower punch (MPa: force
+    /// over the die's bore area; NaN without die).
+    double upper_punch_stress = 0., lower_punch_stress = 0.;
+    /// Mean radial pressure on the die wall between the punches (MPa: the
+    /// radial force over pi x diameter x punch gap; NaN without die or a
+    /// pair of punches), and its ratio to upper_punch_stress.
+    double die_wall_pressure = 0., radial_axial_ratio = 0.;
   };
 
   /**

@@ -1,0 +1,218 @@
+// Punch stresses, die wall pressure, and the Heckel and Kawakita fits.
+#include <densify/postprocess/compaction_curve.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace densify
+{
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    constexpr double pi  = 3.14159265358979323846;
+
+    /// The comma-separated fields of @p line.
+    std::vector<std::string>
+    fields(const std::string &line)
+    {
+      std::vector<std::string> result;
+      std::istringstream       in(line);
+      for (std::string f; std::getline(in, f, ',');)
+        result.push_back(f);
+      return result;
+    }
+
+
+
+    /// The largest finite entry of @p v (0 if none is positive).
+    double
+    largest_value(const std::vector<double> &v)
+    {
+      double largest = 0;
+      for (const double x : v)
+        if (std::isfinite(x))
+          largest = std::max(largest, x);
+      return largest;
+    }
+  } // namespace
+
+
+
+  DieStresses
+  die_stresses(const double upper_force,
+               const double lower_force,
+               const double die_radial_force,
+               const double die_diameter,
+               const double punch_gap)
+  {
+    DieStresses s;
+    if (!(die_diameter > 0))
+      {
+        s.upper_punch = s.lower_punch = s.die_wall = s.radial_axial_ratio = nan;
+        return s;
+      }
+    const double bore = pi * die_diameter * die_diameter / 4;
+    s.upper_punch     = upper_force / bore;
+    s.lower_punch     = lower_force / bore;
+    s.die_wall =
+      punch_gap > 0 ? die_radial_force / (pi * die_diameter * punch_gap) : nan;
+    s.radial_axial_ratio = s.upper_punch > 0 ? s.die_wall / s.upper_punch : nan;
+    return s;
+  }
+
+
+
+  LineFit
+  fit_line(const std::vector<double> &x, const std::vector<double> &y)
+  {
+    LineFit           fit;
+    const std::size_t n = std::min(x.size(), y.size());
+    fit.slope = fit.intercept = fit.r_squared = nan;
+    if (n < 2)
+      return fit;
+    // centred sums: no cancellation for points far from the origin
+    double mx = 0, my = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        mx += x[i];
+        my += y[i];
+      }
+    mx /= n;
+    my /= n;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        sxx += (x[i] - mx) * (x[i] - mx);
+        sxy += (x[i] - mx) * (y[i] - my);
+        syy += (y[i] - my) * (y[i] - my);
+      }
+    if (!(sxx > 0))
+      return fit;
+    fit.points    = n;
+    fit.slope     = sxy / sxx;
+    fit.intercept = my - fit.slope * mx;
+    fit.r_squared = syy > 0 ? sxy * sxy / (sxx * syy) : 1.;
+    return fit;
+  }
+
+
+
+  LineFit
+  fit_heckel(const std::vector<double> &P,
+             const std::vector<double> &D,
+             const double               min_pressure_fraction)
+  {
+    const double        smallest = min_pressure_fraction * largest_value(P);
+    std::vector<double> x, y;
+    for (std::size_t i = 0; i < std::min(P.size(), D.size()); ++i)
+      if (P[i] > 0 && P[i] >= smallest && D[i] > 0 && D[i] < 1)
+        {
+          x.push_back(P[i]);
+          y.push_back(std::log(1 / (1 - D[i])));
+        }
+    return fit_line(x, y);
+  }
+
+
+
+  KawakitaFit
+  fit_kawakita(const std::vector<double> &P,
+               const std::vector<double> &C,
+               const double               min_pressure_fraction)
+  {
+    std::vector<double> x, y;
+    const double        smallest = min_pressure_fraction * largest_value(P);
+    for (std::size_t i = 0; i < std::min(P.size(), C.size()); ++i)
+      if (P[i] > 0 && P[i] >= smallest && C[i] > 0)
+        {
+          x.push_back(P[i]);
+          y.push_back(P[i] / C[i]);
+        }
+    KawakitaFit fit;
+    fit.line = fit_line(x, y);
+    // slope 1/a, intercept 1/(a b)
+    fit.a = 1 / fit.line.slope;
+    fit.b = fit.line.slope / fit.line.intercept;
+    return fit;
+  }
+
+
+
+  LoadingCurve
+  read_loading_curve(const std::string &statistics_csv,
+                     const double       initial_gap)
+  {
+    std::ifstream in(statistics_csv);
+    std::string   line;
+    if (!in || !std::getline(in, line))
+      throw std::runtime_error("cannot read '" + statistics_csv + "'");
+    const std::vector<std::string> header = fields(line);
+    const auto                     column = [&](const std::string &name) {
+      const auto it = std::find(header.begin(), header.end(), name);
+      if (it == header.end())
+        throw std::runtime_error("'" + statistics_csv + "' has no column " +
+                                 name);
+      return static_cast<std::size_t>(it - header.begin());
+    };
+    const std::size_t stroke_column  = column("punch_displacement");
+    const std::size_t stress_column  = column("upper_punch_stress");
+    const std::size_t density_column = column("relative_density");
+    const std::size_t needed =
+      std::max({stroke_column, stress_column, density_column});
+    LoadingCurve curve;
+    double       farthest = -std::numeric_limits<double>::infinity();
+    while (std::getline(in, line))
+      {
+        const std::vector<std::string> f = fields(line);
+        if (f.size() <= needed)
+          continue;
+        const double stroke = std::strtod(f[stroke_column].c_str(), nullptr);
+        if (!(stroke > farthest))
+          continue;
+        farthest = stroke;
+        curve.pressure.push_back(
+          std::strtod(f[stress_column].c_str(), nullptr));
+        curve.density.push_back(
+          std::strtod(f[density_column].c_str(), nullptr));
+        curve.volume_reduction.push_back(stroke / initial_gap);
+      }
+    return curve;
+  }
+
+
+
+  std::string
+  compaction_summary(const LoadingCurve &curve)
+  {
+    std::size_t largest = 0;
+    for (std::size_t i = 0; i < curve.pressure.size(); ++i)
+      if (curve.pressure[i] > curve.pressure[largest])
+        largest = i;
+    constexpr double upper_half = 0.5;
+    const LineFit    heckel =
+      fit_heckel(curve.pressure, curve.density, upper_half);
+    const KawakitaFit kawakita =
+      fit_kawakita(curve.pressure, curve.volume_reduction, upper_half);
+    if (heckel.points < 3 || kawakita.line.points < 3)
+      return "";
+    std::ostringstream s;
+    s << std::setprecision(4) << "Compaction: largest upper punch stress "
+      << curve.pressure[largest] << " MPa at " << 100 * curve.density[largest]
+      << " % relative density\n"
+      << "  Heckel ln(1/(1-D)) = K P + A over " << heckel.points
+      << " loading steps (P >= half the largest): K = " << heckel.slope
+      << " 1/MPa (yield pressure 1/K = " << 1 / heckel.slope
+      << " MPa), A = " << heckel.intercept << ", R^2 = " << heckel.r_squared
+      << "\n"
+      << "  Kawakita P/C = P/a + 1/(a b) over " << kawakita.line.points
+      << " loading steps (the same): a = " << kawakita.a
+      << ", b = " << kawakita.b << " 1/MPa (1/b = " << 1 / kawakita.b
+      << " MPa), R^2 = " << kawakita.line.r_squared << "\n";
+    return s.str();
+  }
+} // namespace densify
