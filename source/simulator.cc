@@ -16,6 +16,7 @@
 #include <densify/contact/broad_search.h>
 #include <densify/geometry/multi_body_mesh.h>
 #include <densify/material/factory.h>
+#include <densify/postprocess/compact_envelope.h>
 #include <densify/postprocess/compaction_curve.h>
 #include <densify/postprocess/quasi_static_guard.h>
 #include <densify/postprocess/run_log.h>
@@ -723,6 +724,13 @@ namespace densify
           s.lower_punch_stress = stress.lower_punch;
           s.die_wall_pressure  = stress.die_wall;
           s.radial_axial_ratio = stress.radial_axial_ratio;
+          const CompactEnvelope envelope =
+            compact_envelope(dof_handler, solution_ghosted);
+          s.compact_height   = envelope.top - envelope.bottom;
+          s.compact_diameter = 2 * envelope.radius;
+          s.envelope_density =
+            s.particle_volume / (numbers::PI * envelope.radius *
+                                 envelope.radius * s.compact_height);
         }
         s.plastic_work = continuum->plastic_work(*mapping);
         const SmallestCellVolume smallest =
@@ -824,14 +832,16 @@ namespace densify
             return false;
           }
       }
-    // the field's constants of the whole loading curve (the rows of earlier
-    // runs of a resumed one included)
-    if (has_density && statistics_writer)
+    // the field's constants of the whole loading curve and the springback
+    // (the rows of earlier runs of a resumed one included)
+    if (statistics_writer)
       try
         {
-          pcout << compaction_summary(
-            read_loading_curve(statistics_name,
-                               upper_initial - prm.tools.lower_position));
+          if (has_density)
+            pcout << compaction_summary(
+              read_loading_curve(statistics_name,
+                                 upper_initial - prm.tools.lower_position));
+          pcout << springback_summary(statistics_name);
         }
       catch (const std::exception &)
         {

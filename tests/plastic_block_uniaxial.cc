@@ -3,7 +3,9 @@
 // tetrahedra, symmetry planes x = 0, y = 0, z = 0, the top z = 1 pushed down,
 // lateral faces free, Newton on the assembled residual with the J2 law of
 // Densify. The axial force and the volume are compared with the exact
-// Hencky/J2 result for no hardening and for linear hardening.
+// Hencky/J2 result for no hardening and for linear hardening. Then the top
+// goes back until the force is zero: the residual height against the
+// elastic recovery of the Hencky law (springback).
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -130,6 +132,40 @@ namespace
         }
     };
 
+    // equilibrium with the top at @p stretch from the committed state: the
+    // axial force; the Newton iterations in @p it
+    const auto equilibrate = [&](const double stretch, unsigned int &it) {
+      for (const auto &[i, top] : constrained)
+        u(i) = top ? stretch - 1. : 0.;
+      double force = 0.;
+      for (it = 0;; ++it)
+        {
+          assemble();
+          force = 0;
+          for (const auto &[i, top] : constrained)
+            if (top)
+              force -= R(i);
+          double r2 = 0;
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            if (constrained.count(i) == 0)
+              r2 += R(i) * R(i);
+          if (std::sqrt(r2) < 1e-10 * parameters.sigma0 || it == 20)
+            break;
+          // constrained rows and columns -> identity, zero right-hand side
+          for (const auto &[i, top] : constrained)
+            {
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                K(i, j) = K(j, i) = 0.;
+              K(i, i) = 1.;
+              R(i)    = 0.;
+            }
+          K.gauss_jordan();
+          K.vmult(du, R);
+          u -= du;
+        }
+      return force;
+    };
+
     const unsigned int n_steps         = 50;
     const double       e_end           = 0.5;
     double             max_force_error = 0., max_volume_error = 0.;
@@ -137,36 +173,9 @@ namespace
       {
         const double e       = e_end * step / n_steps;
         const double stretch = std::exp(-e);
-        for (const auto &[i, top] : constrained)
-          u(i) = top ? stretch - 1. : 0.;
-        double       force = 0.;
-        unsigned int it    = 0;
-        for (;; ++it)
-          {
-            assemble();
-            force = 0;
-            for (const auto &[i, top] : constrained)
-              if (top)
-                force -= R(i);
-            double r2 = 0;
-            for (unsigned int i = 0; i < n_dofs; ++i)
-              if (constrained.count(i) == 0)
-                r2 += R(i) * R(i);
-            if (std::sqrt(r2) < 1e-10 * parameters.sigma0 || it == 20)
-              break;
-            // constrained rows and columns -> identity, zero right-hand side
-            for (const auto &[i, top] : constrained)
-              {
-                for (unsigned int j = 0; j < n_dofs; ++j)
-                  K(i, j) = K(j, i) = 0.;
-                K(i, i) = 1.;
-                R(i)    = 0.;
-              }
-            K.gauss_jordan();
-            K.vmult(du, R);
-            u -= du;
-          }
-        committed = trial;
+        unsigned int it      = 0;
+        const double force   = equilibrate(stretch, it);
+        committed            = trial;
 
         // exact: uniaxial Kirchhoff stress tau, force tau * A0 / stretch
         // (Cauchy tau / J on the current area J A0 / stretch), volume
@@ -186,8 +195,50 @@ namespace
                     << " (exact " << exact_volume - 1. << "), newton " << it
                     << std::endl;
       }
-    const bool ok = max_force_error < 5e-3 && max_volume_error < 5e-3;
-    all_ok        = all_ok && ok;
+    bool ok = max_force_error < 5e-3 && max_volume_error < 5e-3;
+
+    // unloading from the largest strain: the top where the force returns to
+    // zero (secant), against the elastic recovery of the Hencky law, whose
+    // uniaxial log strain recovers by tau / E (tau the Kirchhoff stress at
+    // the largest strain): stretch exp(-e_end + tau / E), volume back to 1
+    {
+      const double tau        = exact_tau(parameters, e_end);
+      const double loaded     = std::exp(-e_end);
+      const double exact      = std::exp(-e_end + tau / parameters.E);
+      double       s0         = loaded;
+      double       s1         = loaded * (1 + 0.5 * tau / parameters.E);
+      unsigned int it         = 0;
+      double       f0         = equilibrate(s0, it);
+      double       f1         = equilibrate(s1, it);
+      unsigned int iterations = 0;
+      for (; std::abs(f1) > 1e-10 * parameters.sigma0 && iterations < 20;
+           ++iterations)
+        {
+          const double s2 = s1 - f1 * (s1 - s0) / (f1 - f0);
+          s0              = s1;
+          f0              = f1;
+          s1              = s2;
+          f1              = equilibrate(s1, it);
+        }
+      const double recovery_error =
+        std::abs((s1 - loaded) / (exact - loaded) - 1.);
+      const bool unloaded_ok =
+        recovery_error < 0.02 && std::abs(volume - 1.) < 1e-6 * tau / kappa;
+      // round-off quantities only as bounds (the output is compared)
+      std::cout << "  unloaded (force below 1e-10 sigma0: "
+                << (std::abs(f1) <= 1e-10 * parameters.sigma0 ? "yes" : "no")
+                << ") at height " << std::setprecision(6) << s1 << " (exact "
+                << exact << ", loaded " << loaded
+                << "); elastic recovery within 1e-6 of exact: "
+                << (recovery_error < 1e-6 ? "yes" : "no")
+                << ", volume back to 1: "
+                << (std::abs(volume - 1.) < 1e-6 * tau / kappa ? "yes" : "no")
+                << std::endl;
+      std::cout << "  residual height within 2 % of the elastic recovery: "
+                << (unloaded_ok ? "yes" : "no") << std::endl;
+      ok = ok && unloaded_ok;
+    }
+    all_ok = all_ok && ok;
     std::cout << "  largest relative error: force " << std::scientific
               << std::setprecision(1) << max_force_error << ", volume change "
               << max_volume_error << std::defaultfloat << std::endl;

@@ -143,45 +143,92 @@ namespace densify
 
 
 
-  LoadingCurve
-  read_loading_curve(const std::string &statistics_csv,
-                     const double       initial_gap)
+  std::vector<std::vector<double>>
+  read_columns(const std::string              &statistics_csv,
+               const std::vector<std::string> &names)
   {
     std::ifstream in(statistics_csv);
     std::string   line;
     if (!in || !std::getline(in, line))
       throw std::runtime_error("cannot read '" + statistics_csv + "'");
     const std::vector<std::string> header = fields(line);
-    const auto                     column = [&](const std::string &name) {
-      const auto it = std::find(header.begin(), header.end(), name);
-      if (it == header.end())
-        throw std::runtime_error("'" + statistics_csv + "' has no column " +
-                                 name);
-      return static_cast<std::size_t>(it - header.begin());
-    };
-    const std::size_t stroke_column  = column("punch_displacement");
-    const std::size_t stress_column  = column("upper_punch_stress");
-    const std::size_t density_column = column("relative_density");
-    const std::size_t needed =
-      std::max({stroke_column, stress_column, density_column});
-    LoadingCurve curve;
-    double       farthest = -std::numeric_limits<double>::infinity();
+    std::vector<std::size_t>       index;
+    for (const std::string &name : names)
+      {
+        const auto it = std::find(header.begin(), header.end(), name);
+        if (it == header.end())
+          throw std::runtime_error("'" + statistics_csv + "' has no column " +
+                                   name);
+        index.push_back(it - header.begin());
+      }
+    const std::size_t needed = *std::max_element(index.begin(), index.end());
+    std::vector<std::vector<double>> columns(names.size());
     while (std::getline(in, line))
       {
         const std::vector<std::string> f = fields(line);
         if (f.size() <= needed)
           continue;
-        const double stroke = std::strtod(f[stroke_column].c_str(), nullptr);
-        if (!(stroke > farthest))
-          continue;
-        farthest = stroke;
-        curve.pressure.push_back(
-          std::strtod(f[stress_column].c_str(), nullptr));
-        curve.density.push_back(
-          std::strtod(f[density_column].c_str(), nullptr));
-        curve.volume_reduction.push_back(stroke / initial_gap);
+        for (std::size_t k = 0; k < index.size(); ++k)
+          columns[k].push_back(std::strtod(f[index[k]].c_str(), nullptr));
       }
+    return columns;
+  }
+
+
+
+  LoadingCurve
+  read_loading_curve(const std::string &statistics_csv,
+                     const double       initial_gap)
+  {
+    const std::vector<std::vector<double>> c = read_columns(
+      statistics_csv,
+      {"punch_displacement", "upper_punch_stress", "relative_density"});
+    LoadingCurve curve;
+    double       farthest = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < c[0].size(); ++i)
+      if (c[0][i] > farthest)
+        {
+          farthest = c[0][i];
+          curve.pressure.push_back(c[1][i]);
+          curve.density.push_back(c[2][i]);
+          curve.volume_reduction.push_back(c[0][i] / initial_gap);
+        }
     return curve;
+  }
+
+
+
+  std::string
+  springback_summary(const std::string &statistics_csv)
+  {
+    const std::vector<std::vector<double>> c =
+      read_columns(statistics_csv,
+                   {"punch_displacement",
+                    "upper_punch_force",
+                    "compact_height",
+                    "compact_diameter",
+                    "envelope_density"});
+    const std::vector<double> &stroke = c[0];
+    if (stroke.empty())
+      return "";
+    const std::size_t full =
+      std::max_element(stroke.begin(), stroke.end()) - stroke.begin();
+    const std::size_t last = stroke.size() - 1;
+    // unloaded: the punch back from its farthest travel, and off the
+    // compact (no force left on it)
+    if (!(stroke[last] < stroke[full]) || c[1][last] != 0.)
+      return "";
+    const auto percent = [](const double after, const double before) {
+      return 100 * (after - before) / before;
+    };
+    std::ostringstream s;
+    s << std::setprecision(4) << "Springback after unloading from a stroke of "
+      << stroke[full] << " mm: axial " << percent(c[2][last], c[2][full])
+      << " % (compact height " << c[2][full] << " -> " << c[2][last]
+      << " mm), radial " << percent(c[3][last], c[3][full]) << " % (diameter "
+      << c[3][full] << " -> " << c[3][last] << " mm); envelope density "
+      << 100 * c[4][full] << " -> " << 100 * c[4][last] << " %\n";
+    return s.str();
   }
 
 

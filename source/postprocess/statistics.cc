@@ -40,7 +40,8 @@ namespace densify
            "friction_work,damping_work,contact_energy,external_work,"
            "energy_balance,multiplier_work,continuations,min_cell_volume_ratio,"
            "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
-           "radial_axial_ratio";
+           "radial_axial_ratio,compact_height,compact_diameter,"
+           "envelope_density";
   }
 
 
@@ -71,7 +72,9 @@ namespace densify
         << s.continuations << ',' << std::setprecision(6)
         << s.min_cell_volume_ratio << ',' << std::setprecision(10)
         << s.upper_punch_stress << ',' << s.lower_punch_stress << ','
-        << s.die_wall_pressure << ',' << s.radial_axial_ratio << '\n';
+        << s.die_wall_pressure << ',' << s.radial_axial_ratio << ','
+        << s.compact_height << ',' << s.compact_diameter << ','
+        << s.envelope_density << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

@@ -88,6 +88,15 @@ namespace densify
                const double               min_pressure_fraction = 0.1);
 
   /**
+   * The columns @p names of @p statistics_csv (by name, in that order), one
+   * entry per complete row. Throws std::runtime_error if the file cannot be
+   * read or lacks a column.
+   */
+  std::vector<std::vector<double>>
+  read_columns(const std::string              &statistics_csv,
+               const std::vector<std::string> &names);
+
+  /**
    * The loading curve of a run from its statistics.csv (columns by name):
    * the rows where the upper punch reaches a stroke beyond every earlier
    * row, as upper punch stress (MPa), relative density and the volume
@@ -111,4 +120,14 @@ namespace densify
    */
   std::string
   compaction_summary(const LoadingCurve &curve);
+
+  /**
+   * A line for the end of a run whose upper punch went back from its
+   * farthest stroke and carries no force at the last step: the axial and
+   * radial springback (%) of the compact's envelope (compact_height,
+   * compact_diameter) from the farthest stroke to the last step, and the
+   * envelope density at both; "" otherwise.
+   */
+  std::string
+  springback_summary(const std::string &statistics_csv);
 } // namespace densify

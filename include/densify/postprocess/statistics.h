@@ -88,6 +88,10 @@ namespace densify
     /// radial force over pi x diameter x punch gap; NaN without die or a
     /// pair of punches), and its ratio to upper_punch_stress.
     double die_wall_pressure = 0., radial_axial_ratio = 0.;
+    /// Height and diameter (mm) of the compact's envelope, the bounding
+    /// cylinder about the die axis of the deformed particles
+    /// (compact_envelope()), and the particle volume over its volume.
+    double compact_height = 0., compact_diameter = 0., envelope_density = 0.;
   };
 
   /**

@@ -1,0 +1,36 @@
+// The compact's current envelope.
+#include <deal.II/base/mpi.h>
+
+#include <densify/postprocess/compact_envelope.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace densify
+{
+  CompactEnvelope
+  compact_envelope(const DoFHandler<3>                 &dof_handler,
+                   const TrilinosWrappers::MPI::Vector &solution)
+  {
+    double bottom = std::numeric_limits<double>::max();
+    double top = -std::numeric_limits<double>::max(), radius2 = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            Point<3> x = cell->vertex(v);
+            for (unsigned int c = 0; c < 3; ++c)
+              x[c] += solution(cell->vertex_dof_index(v, c));
+            bottom  = std::min(bottom, x[2]);
+            top     = std::max(top, x[2]);
+            radius2 = std::max(radius2, x[0] * x[0] + x[1] * x[1]);
+          }
+    const MPI_Comm  comm = dof_handler.get_communicator();
+    CompactEnvelope envelope;
+    envelope.bottom = Utilities::MPI::min(bottom, comm);
+    envelope.top    = Utilities::MPI::max(top, comm);
+    envelope.radius = std::sqrt(Utilities::MPI::max(radius2, comm));
+    return envelope;
+  }
+} // namespace densify
