@@ -132,20 +132,6 @@ namespace densify
 
 
     /**
-     * A uniform random number in [0, 1) with 53 random bits from two draws
-     * of @p random (portable, unlike std::uniform_real_distribution).
-     */
-    double
-    uniform(std::mt19937 &random)
-    {
-      const std::uint64_t a = random() >> 5;
-      const std::uint64_t b = random() >> 6;
-      return (a * 67108864. + b) / 9007199254740992.;
-    }
-
-
-
-    /**
      * A uniform grid of square cells over [-half_width, half_width]^2 that
      * stores particle indices, to find the particles near a point in O(1).
      * Points outside are put in the nearest boundary cell.
@@ -420,6 +406,16 @@ namespace densify
 
 
 
+  double
+  uniform_random(std::mt19937 &random)
+  {
+    const std::uint64_t a = random() >> 5;
+    const std::uint64_t b = random() >> 6;
+    return (a * 67108864. + b) / 9007199254740992.;
+  }
+
+
+
   std::vector<Particle>
   hexagonal_layer(const double             die_diameter,
                   const double             particle_diameter,
@@ -535,8 +531,8 @@ namespace densify
         double x = 0., y = 0.;
         do
           {
-            x = rho * (2. * uniform(random) - 1.);
-            y = rho * (2. * uniform(random) - 1.);
+            x = rho * (2. * uniform_random(random) - 1.);
+            y = rho * (2. * uniform_random(random) - 1.);
         } while (x * x + y * y > rho * rho);
         ++attempts;
 

@@ -3,6 +3,7 @@
 
 #include <densify/geometry/particles.h>
 
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,15 @@ namespace densify
     /// The die axis passes through the contact point of two particles.
     edge_centred
   };
+
+  /**
+   * A uniform random number in [0, 1) with 53 random bits from two draws
+   * of @p random: the same sequence on every machine, unlike
+   * std::uniform_real_distribution, whose algorithm is
+   * implementation-defined.
+   */
+  double
+  uniform_random(std::mt19937 &random);
 
   /**
    * A single layer of spheres of diameter @p particle_diameter (mm) on a
