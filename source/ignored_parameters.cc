@@ -207,9 +207,19 @@ namespace densify
                "scene is 0)";
       if (entry == "Particles/Number of particles" ||
           entry == "Particles/Packing seed")
-        if (packing != "random layer")
-          return "only Particles/Packing = random layer uses it (Packing = " +
+        if (packing != "random layer" && packing != "deposited")
+          return "only Particles/Packing = random layer or deposited uses it "
+                 "(Packing = " +
                  packing + ")";
+      if ((entry == "Particles/Size distribution" ||
+           entry == "Particles/Diameter spread" ||
+           entry == "Particles/Fill height") &&
+          packing != "deposited")
+        return "only Particles/Packing = deposited uses it (Packing = " +
+               packing + ")";
+      if (entry == "Particles/Diameter spread" &&
+          get("Particles/Size distribution") != "log-normal")
+        return "only Particles/Size distribution = log-normal uses it";
       if (entry == "Particles/Hexagonal placement" &&
           packing != "hexagonal layer")
         return "only Particles/Packing = hexagonal layer uses it (Packing = " +

@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <densify/effects.h>
+#include <densify/geometry/deposition.h>
 #include <densify/geometry/packing.h>
 #include <densify/parameters.h>
 #include <densify/scene.h>
@@ -276,7 +277,12 @@ main(int argc, char **argv)
                                              parameters.tools.die_diameter,
                                              scene.upper_initial -
                                                parameters.tools.lower_position)
-             << " % of the die up to the upper punch (spheres)";
+             << " % of the die up to the upper punch at "
+             << std::setprecision(3) << scene.upper_initial
+             << " mm (spheres)";
+      what << ", mean coordination number " << std::fixed
+           << std::setprecision(2) << mean_coordination(scene.particles)
+           << std::defaultfloat;
       what << "; about " << format_count(estimate.elements) << " tetrahedra, "
            << format_count(std::ceil(estimate.bytes / 1e8) / 10)
            << " GB of memory";

@@ -48,19 +48,47 @@ namespace densify
         "hexagonal lattice whose neighbours touch, clipped to the die "
         "(Tools/Die wall/Diameter), resting on the lower punch; 'random "
         "layer': Number of particles such spheres placed at random (Packing "
-        "seed), then moved towards the axis until they touch. The initial "
-        "relative density is printed (also by --validate).",
-        Patterns::Selection("list|hexagonal layer|random layer"));
+        "seed), then moved towards the axis until they touch; "
+        "'deposited': a bed of Number of particles spheres (or up to Fill "
+        "height) of Size distribution poured into the die, each dropped at "
+        "random and rolled down onto the bed until it rests (frictionless "
+        "sequential deposition). The initial "
+        "relative density and mean coordination number are printed (also "
+        "by --validate).",
+        Patterns::Selection("list|hexagonal layer|random layer|deposited"));
       prm.add_parameter("Number of particles",
                         particles.n_particles,
-                        "Number of spheres of Packing = random layer "
-                        "(integer >= 1); other packings ignore it.",
+                        "Number of spheres of Packing = random layer or "
+                        "deposited (integer >= 1; with Fill height the most "
+                        "to pour); other packings ignore it.",
                         Patterns::Integer(1));
       prm.add_parameter("Packing seed",
                         particles.packing_seed,
-                        "Seed of the random layer (integer >= 0); the same "
-                        "seed gives the same layer, another seed another "
-                        "layer of the same kind.");
+                        "Seed of the random layer and of the deposited bed "
+                        "(integer >= 0); the same seed gives the same "
+                        "particles, another seed others of the same kind.");
+      prm.add_parameter(
+        "Size distribution",
+        particles.size_distribution,
+        "Diameters of Packing = deposited: 'equal' (the first of "
+        "Diameters), 'uniform' (between the two values of Diameters, "
+        "'dmin, dmax') or 'log-normal' (median the first of Diameters, "
+        "Diameter spread the standard deviation of ln d, truncated at three "
+        "spreads); drawn with Packing seed in the order they are poured.",
+        Patterns::Selection("equal|uniform|log-normal"));
+      prm.add_parameter("Diameter spread",
+                        particles.diameter_spread,
+                        "Size distribution = log-normal only: the standard "
+                        "deviation of ln d (dimensionless, 0 to 1).",
+                        Patterns::Double(0., 1.));
+      prm.add_parameter("Fill height",
+                        particles.fill_height,
+                        "Packing = deposited: pour until the next particle "
+                        "would rest with its top more than this above the "
+                        "lower punch (mm; that particle is left out), at "
+                        "most Number of particles; 0: pour Number of "
+                        "particles.",
+                        Patterns::Double(0.));
       prm.add_parameter(
         "Hexagonal placement",
         particles.hexagonal_placement,

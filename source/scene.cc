@@ -2,6 +2,7 @@
 // load history.
 #include <deal.II/base/utilities.h>
 
+#include <densify/geometry/deposition.h>
 #include <densify/geometry/packing.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
@@ -127,6 +128,45 @@ namespace densify
 
 
 
+  namespace
+  {
+    /// What Particles/Packing = deposited pours, from the parameters and
+    /// the fields of Particles/Diameters.
+    DepositionSpec
+    deposition_spec(const Parameters               &prm,
+                    const std::vector<std::string> &diameters,
+                    const std::string              &material)
+    {
+      const ParticleParameters &pp = prm.particles;
+      DepositionSpec            spec;
+      spec.die_diameter = prm.tools.die_diameter;
+      spec.floor        = prm.tools.lower_position;
+      spec.n_particles  = pp.n_particles;
+      spec.fill_height  = pp.fill_height;
+      spec.seed         = pp.packing_seed;
+      spec.material     = material;
+      spec.first        = Utilities::string_to_double(diameters.at(0));
+      if (pp.size_distribution == "uniform")
+        {
+          if (diameters.size() != 2)
+            throw std::runtime_error(
+              "Particles/Size distribution = uniform needs Particles/"
+              "Diameters = 'dmin, dmax', not '" +
+              pp.diameters + "'");
+          spec.sizes  = SizeDistribution::uniform;
+          spec.second = Utilities::string_to_double(diameters[1]);
+        }
+      else if (pp.size_distribution == "log-normal")
+        {
+          spec.sizes  = SizeDistribution::log_normal;
+          spec.second = pp.diameter_spread;
+        }
+      return spec;
+    }
+  } // namespace
+
+
+
   Scene
   build_scene(const Parameters &prm)
   {
@@ -180,6 +220,8 @@ namespace densify
                 particles = hexagonal_layer(
                   prm.tools.die_diameter, d, z, material, 0., placement);
               }
+            else if (pp.packing == "deposited")
+              particles = deposit(deposition_spec(prm, d_list, material));
             else
               particles = random_layer(prm.tools.die_diameter,
                                        d,

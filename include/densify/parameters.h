@@ -16,13 +16,20 @@ namespace densify
   /// Subsection "Particles": where the particles are and what they are made of.
   struct ParticleParameters
   {
-    /// "list" (Centres or the particle file), "hexagonal layer" or "random
-    /// layer" (generated in the die on the lower punch).
+    /// "list" (Centres or the particle file), "hexagonal layer", "random
+    /// layer" or "deposited" (generated in the die on the lower punch).
     std::string packing = "list";
-    /// Particles of the random layer.
+    /// Particles of the random layer and of the deposited bed.
     unsigned int n_particles = 43;
-    /// Seed of the random layer.
+    /// Seed of the random layer and of the deposited bed.
     unsigned int packing_seed = 1;
+    /// Diameters of the deposited bed: "equal", "uniform" or "log-normal".
+    std::string size_distribution = "equal";
+    /// Standard deviation of ln d of the log-normal distribution.
+    double diameter_spread = 0.2;
+    /// Pour the deposited bed up to this height above the lower punch (mm;
+    /// 0: Number of particles).
+    double fill_height = 0.;
     /// Where the die axis sits in the hexagonal layer: "particle centred",
     /// "hole centred", "edge centred" or "most particles".
     std::string hexagonal_placement = "particle centred";

@@ -14,6 +14,11 @@ for scene in "$SOURCE_DIR"/prm/*.prm; do
     # the paper's 43-sphere layer shrunk to its middle seven (die 7.52 mm)
     single_layer_*) extra=(--set "Tools/Die wall/Diameter=7.52"
                            --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04") ;;
+    # the poured beds shrunk to their first 12 spheres, and 500 explicit
+    # steps for the short stroke
+    multi_layer_*) extra=(--set "Particles/Number of particles=12"
+                          --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04"
+                          --set "Explicit/Number of steps=500") ;;
   esac
   "$DENSIFY" "$scene" "${extra[@]}" \
     --set "Output/Directory=out_$name" \
