@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <random>
@@ -18,18 +19,6 @@ namespace densify
 {
   namespace
   {
-    /// A number with at most 6 significant digits, for messages.
-    std::string
-    fmt(const double x)
-    {
-      std::ostringstream s;
-      s.precision(6);
-      s << x;
-      return s.str();
-    }
-
-
-
     /// The diameters to pour, in pouring order.
     std::vector<double>
     draw_diameters(const DepositionSpec &spec, std::mt19937 &random)
@@ -144,10 +133,13 @@ namespace densify
         d_max = std::max(d_max, d);
       }
     if (d_max >= spec.die_diameter)
-      throw std::runtime_error("Particles/Diameters: a sphere of " +
-                               fmt(d_max) + " mm does not fit the die of " +
-                               fmt(spec.die_diameter) +
-                               " mm (Tools/Die wall/Diameter)");
+      {
+        std::ostringstream message;
+        message << std::setprecision(6) << "Particles/Diameters: a sphere of "
+                << d_max << " mm does not fit the die of " << spec.die_diameter
+                << " mm (Tools/Die wall/Diameter)";
+        throw std::runtime_error(message.str());
+      }
 
     std::vector<Particle>     placed;
     Columns                   columns(R, d_max);

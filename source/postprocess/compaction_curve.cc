@@ -61,7 +61,9 @@ namespace densify
     s.lower_punch     = lower_force / bore;
     s.die_wall =
       punch_gap > 0 ? die_radial_force / (pi * die_diameter * punch_gap) : nan;
-    s.radial_axial_ratio = s.upper_punch > 0 ? s.die_wall / s.upper_punch : nan;
+    // no axial stress, no ratio to speak of: 0 (NaN only where a tool is
+    // missing)
+    s.radial_axial_ratio = s.upper_punch > 0 ? s.die_wall / s.upper_punch : 0.;
     return s;
   }
 

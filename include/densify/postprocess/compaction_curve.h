@@ -22,7 +22,8 @@ namespace densify
     /// (pi x die diameter x punch gap).
     double die_wall = 0.;
     /// die_wall / upper_punch: the ratio of radial to axial stress (the
-    /// "transmission" or Janssen coefficient of the compact).
+    /// "transmission" or Janssen coefficient of the compact); 0 while the
+    /// upper punch carries no stress.
     double radial_axial_ratio = 0.;
   };
 
