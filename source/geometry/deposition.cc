@@ -147,8 +147,6 @@ namespace densify
     double                    bed_top = spec.floor;
 
     // move c onto the constraints of a sphere of radius r (floor, wall,
-    // the candidates): alternating projections; false if they do not meet
-    // move c onto the constraints of a sphere of radius r (floor, wall,
     // the candidates) by Newton's method on the violated ones: the least
     // change that closes their linearised overlaps (the three largest at a
     // time); false if that does not converge
@@ -305,8 +303,9 @@ namespace densify
             "Particles/Packing = deposited: a sphere could not be placed "
             "above the bed (Particles/Packing seed " +
             std::to_string(spec.seed) + ")");
-        unsigned int it = 0;
-        for (; it < 100000 && h > 1e-10 * r; ++it)
+        // (the cap on the iterations only guards the loop: the tests' beds
+        // come to rest within a few thousand)
+        for (unsigned int it = 0; it < 100000 && h > 1e-10 * r; ++it)
           {
             columns.near(c, r + d_max / 2 + 2 * h, candidates);
             const Tensor<1, 3> d = descent(c, r);
