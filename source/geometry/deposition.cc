@@ -303,8 +303,8 @@ namespace densify
             "Particles/Packing = deposited: a sphere could not be placed "
             "above the bed (Particles/Packing seed " +
             std::to_string(spec.seed) + ")");
-        // (the cap on the iterations only guards the loop: the tests' beds
-        // come to rest within a few thousand)
+        // (the cap on the iterations only guards the loop: the spheres of
+        // the test's beds come to rest within ten thousand)
         for (unsigned int it = 0; it < 100000 && h > 1e-10 * r; ++it)
           {
             columns.near(c, r + d_max / 2 + 2 * h, candidates);
