@@ -2,17 +2,61 @@
 #include <densify/postprocess/statistics.h>
 #include <densify/utilities.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
 namespace densify
 {
+  namespace
+  {
+    /**
+     * A resumed run appends to @p filename: if its header is an older one
+     * (a prefix of today's, columns are only ever appended), rewrite it with
+     * today's header and the rows padded with "nan" for the new columns, so
+     * that every row has the header's fields.
+     */
+    void
+    extend_columns(const std::string &filename)
+    {
+      std::vector<std::string> lines;
+      {
+        std::ifstream in(filename);
+        for (std::string line; std::getline(in, line);)
+          lines.push_back(line);
+      }
+      const std::string header = StatisticsWriter::header();
+      if (lines.empty() || lines[0] == header ||
+          header.compare(0, lines[0].size() + 1, lines[0] + ",") != 0)
+        return;
+      const auto fields = [](const std::string &line) {
+        return std::count(line.begin(), line.end(), ',') + 1;
+      };
+      const long    added = fields(header) - fields(lines[0]);
+      std::ofstream out(filename, std::ios::trunc);
+      out << header << '\n';
+      for (std::size_t i = 1; i < lines.size(); ++i)
+        {
+          out << lines[i];
+          for (long k = 0; k < added; ++k)
+            out << ",nan";
+          out << '\n';
+        }
+      if (!out)
+        throw std::runtime_error("Output/Directory: " + write_error(filename));
+    }
+  } // namespace
+
+
+
   StatisticsWriter::StatisticsWriter(const std::string &filename,
                                      const bool         append)
     : filename(filename)
-    , out(filename, append ? std::ios::app : std::ios::trunc)
   {
+    if (append)
+      extend_columns(filename);
+    out.open(filename, append ? std::ios::app : std::ios::trunc);
     if (!out)
       throw std::runtime_error("Output/Directory: " + write_error(filename));
     if (!append)

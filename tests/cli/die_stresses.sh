@@ -10,7 +10,10 @@
 #   2. the summary's Heckel constants equal a least-squares fit of
 #      ln(1/(1 - D)) against the punch stress over the upper half of the
 #      pressure range, computed here from the file (to the 4 printed
-#      digits), and Kawakita's a and b are printed.
+#      digits), and Kawakita's a and b are printed;
+#   3. a run resumed over a statistics.csv written without these columns
+#      (by an older Densify) gets today's header, its older rows padded with
+#      nan, so every row has the header's fields.
 set -u
 cd "$WORK_DIR"
 fails=0
@@ -71,5 +74,23 @@ echo "$heckel" | grep -q "K = ${expected% *} 1/MPa" || fails=$((fails + 1))
 echo "$heckel" | grep -q "A = ${expected#* }," || fails=$((fails + 1))
 grep "Kawakita" explicit.log | grep -q "a = .*, b = .* 1/MPa" ||
   fails=$((fails + 1))
+# 3. the columns before upper_punch_stress only, then --resume
+"$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Output/Directory=resumed" \
+  --set "Output/Interval=0" --stop-after 2 > resumed.log 2>&1
+old=$(head -n 1 resumed/statistics.csv | tr ',' '\n' | grep -n "^upper_punch_stress$" | cut -d: -f1)
+cut -d, -f1-$((old - 1)) resumed/statistics.csv > older.csv
+mv older.csv resumed/statistics.csv
+"$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Output/Directory=resumed" \
+  --set "Output/Interval=0" --resume >> resumed.log 2>&1 || fails=$((fails + 1))
+header=$(head -n 1 implicit/statistics.csv)
+if [ "$(head -n 1 resumed/statistics.csv)" != "$header" ] ||
+  [ "$(awk -F, '{print NF}' resumed/statistics.csv | sort -u | wc -l)" -ne 1 ] ||
+  [ "$(sed -n 2p resumed/statistics.csv | cut -d, -f"$old")" != nan ] ||
+  [ "$(wc -l < resumed/statistics.csv)" -ne 6 ]; then
+  echo "FAIL the resumed statistics.csv:"; cat resumed/statistics.csv
+  fails=$((fails + 1))
+else
+  echo "resumed over an older statistics.csv: today's header, rows padded"
+fi
 [ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
 echo "all checks passed"
