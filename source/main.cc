@@ -278,8 +278,7 @@ main(int argc, char **argv)
                                              scene.upper_initial -
                                                parameters.tools.lower_position)
              << " % of the die up to the upper punch at "
-             << std::setprecision(3) << scene.upper_initial
-             << " mm (spheres)";
+             << std::setprecision(3) << scene.upper_initial << " mm (spheres)";
       what << ", mean coordination number " << std::fixed
            << std::setprecision(2) << mean_coordination(scene.particles)
            << std::defaultfloat;

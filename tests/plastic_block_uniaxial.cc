@@ -4,7 +4,7 @@
 // lateral faces free, Newton on the assembled residual with the J2 law of
 // Densify. The axial force and the volume are compared with the exact
 // Hencky/J2 result for no hardening and for linear hardening. Then the top
-// goes back until the force is zero: the residual height against the
+// goes back until the force is zero: the height after unloading against the
 // elastic recovery of the Hencky law (springback).
 #include <deal.II/base/quadrature_lib.h>
 
@@ -234,8 +234,9 @@ namespace
                 << ", volume back to 1: "
                 << (std::abs(volume - 1.) < 1e-6 * tau / kappa ? "yes" : "no")
                 << std::endl;
-      std::cout << "  residual height within 2 % of the elastic recovery: "
-                << (unloaded_ok ? "yes" : "no") << std::endl;
+      std::cout
+        << "  height after unloading within 2 % of the elastic recovery: "
+        << (unloaded_ok ? "yes" : "no") << std::endl;
       ok = ok && unloaded_ok;
     }
     all_ok = all_ok && ok;
