@@ -214,15 +214,28 @@ namespace densify
         "F-bar (Volumetric locking remedy = nodal averaging), "
         "dimensionless, 0 <= alpha <= 1: each corner's material sees "
         "ln J = (1 - alpha) ln J_patch + alpha ln J_cell, so a cell keeps a "
-        "bulk stiffness alpha kappa against a volume change its patch does "
+        "bulk stiffness alpha^2 kappa against a volume change its patch does "
         "not share, the mode that lets single cells crush in the dense stage "
-        "(doc/theory.md). 0: the plain F-bar; larger: cells stay sound, but "
+        "(doc/theory.md). 0: the plain F-bar; larger: cells stay fuller, but "
         "a volume constraint per cell comes back (1 is the locking plain "
-        "element). The default keeps the cells of the paper scene's dense "
-        "stage from collapsing and leaves the punch force of looser "
-        "packings almost unchanged (doc/verification.md, \"Cell volume "
-        "stabilisation\").",
+        "element). The default leaves the punch force of looser packings "
+        "almost unchanged (doc/verification.md, \"Cell volume "
+        "stabilisation\"); Cell volume barrier stops the cells that would "
+        "still crush.",
         Patterns::Double(0., 1.));
+      prm.add_parameter(
+        "Cell volume barrier",
+        mesh.cell_volume_barrier,
+        "Smallest volume ratio V/V0 a cell of the nodal-averaged F-bar "
+        "(Volumetric locking remedy = nodal averaging, finite strain) "
+        "reaches freely, dimensionless, 0 <= value < 1: a cell whose own "
+        "volume ratio leaves [value, 1/value] meets the material's bulk "
+        "modulus against the excess (ln V/V0 beyond the band), so no cell "
+        "crushes however dense the compact; cells inside the band are left "
+        "alone, so the answer changes only where cells would otherwise "
+        "crush (doc/theory.md, \"The cells' own volume\"). 0: no barrier. "
+        "A metal's elastic volume change stays far inside the default band.",
+        Patterns::Double(0., 0.999));
       prm.add_parameter(
         "Maximum elements",
         mesh.max_elements,

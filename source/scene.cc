@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <densify/geometry/deposition.h>
+#include <densify/geometry/liggghts_dump.h>
 #include <densify/geometry/packing.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
@@ -244,7 +245,23 @@ namespace densify
             "wall/Diameter");
       }
     else if (!pp.particle_file.empty())
-      particles = read_particle_csv(pp.particle_file, pp.materials);
+      {
+        particles = read_particle_csv(pp.particle_file, pp.materials);
+        // a DEM bed (LIGGGHTS dump): its soft contacts overlap a little;
+        // moved apart in the die and on the lower punch
+        if (is_liggghts_dump(pp.particle_file))
+          {
+            Container die;
+            die.has_die    = prm.tools.die_enabled;
+            die.die_radius = prm.tools.die_diameter / 2;
+            die.has_lower  = prm.tools.lower_enabled;
+            die.lower_z    = prm.tools.lower_position;
+            separate_overlaps(particles,
+                              die,
+                              "Particles/Particle file: '" + pp.particle_file +
+                                "' (a LIGGGHTS dump)");
+          }
+      }
     else
       {
         const std::vector<Point<3>> centres =

@@ -99,6 +99,14 @@ namespace densify
         particle_material.push_back(create_material(p.material, prm.material));
         cell_volume_weights.push_back(prm.mesh.cell_volume_stabilisation);
       }
+    if (effects.locking == LockingRemedy::nodal_averaging &&
+        prm.mesh.cell_volume_barrier > 0.)
+      {
+        cell_volume_barrier.log_limit = std::log(prm.mesh.cell_volume_barrier);
+        for (const auto &material : particle_material)
+          cell_volume_barrier.stiffness.push_back(
+            material->finite_strain() ? material->bulk_modulus() : 0.);
+      }
   }
 
 
@@ -225,15 +233,18 @@ namespace densify
   Simulator::setup_force_terms(const std::vector<double> &penalty)
   {
     // the continuum, with the F-bar of the locking remedy
-    continuum = std::make_unique<Continuum>(
-      dof_handler,
-      particle_material,
-      effects.locking == LockingRemedy::nodal_averaging ?
-        std::make_unique<NodalAveraging>(dof_handler,
-                                         *mapping,
-                                         cell_volume_weights) :
-        nullptr,
-      prm.mesh.degree);
+    std::unique_ptr<NodalAveraging> nodal_averaging;
+    if (effects.locking == LockingRemedy::nodal_averaging)
+      {
+        nodal_averaging = std::make_unique<NodalAveraging>(dof_handler,
+                                                           *mapping,
+                                                           cell_volume_weights);
+        nodal_averaging->set_cell_volume_barrier(cell_volume_barrier);
+      }
+    continuum  = std::make_unique<Continuum>(dof_handler,
+                                            particle_material,
+                                            std::move(nodal_averaging),
+                                            prm.mesh.degree);
     bulk_terms = {continuum.get()};
     if (effects.body_force)
       {
@@ -869,7 +880,7 @@ namespace densify
           << smallest.centre
           << ") mm (reference position; printed once, statistics.csv has "
              "min_cell_volume_ratio of every step): its forces are biased; "
-             "raise Mesh/Cell volume stabilisation from "
-          << prm.mesh.cell_volume_stabilisation << std::endl;
+             "raise Mesh/Cell volume barrier from "
+          << prm.mesh.cell_volume_barrier << std::endl;
   }
 } // namespace densify

@@ -24,6 +24,7 @@ namespace densify
                                                effects.mass_scaling,
                                                tangential_ratio,
                                                cell_volume_weights);
+    lumped_mass->set_cell_volume_barrier(cell_volume_barrier);
     explicit_dynamics =
       std::make_unique<ExplicitDynamics>(prm.explicit_dynamics,
                                          prm.time.end_time,

@@ -55,8 +55,10 @@ namespace
   /// A P1 block [0,1]^3 of tetrahedra with the remedy set up.
   struct Block
   {
-    /// @p alpha: the stabilisation weight of the cells' own volume change.
-    explicit Block(const double alpha = 0.)
+    /// @p alpha: the stabilisation weight of the cells' own volume change;
+    /// @p barrier: the barrier against crushed cells (CellVolumeBarrier).
+    explicit Block(const double             alpha   = 0.,
+                   const CellVolumeBarrier &barrier = CellVolumeBarrier())
       : tria(MPI_COMM_WORLD,
              Triangulation<3>::none,
              false,
@@ -72,6 +74,7 @@ namespace
       averaging = std::make_unique<NodalAveraging>(dof_handler,
                                                    mapping,
                                                    std::vector<double>{alpha});
+      averaging->set_cell_volume_barrier(barrier);
       TrilinosWrappers::SparsityPattern sp(owned, MPI_COMM_WORLD);
       DoFTools::make_sparsity_pattern(dof_handler,
                                       sp,
@@ -349,6 +352,29 @@ main(int argc, char **argv)
   check(stabilised,
         LinearElastic(43120., 0.3, "Sn"),
         "small strain, cell volume weight 0.05");
+  // with the barrier against crushed cells, its band narrowed to
+  // [0.97, 1/0.97] so that the random deformations take many cells beyond
+  // it (the barrier's forces change the block's by more than a tenth)
+  {
+    const J2Plasticity sn(material_preset("Sn"));
+    CellVolumeBarrier  barrier;
+    barrier.log_limit = std::log(0.97);
+    barrier.stiffness = {sn.bulk_modulus()};
+    Block        with_barrier(0.05, barrier);
+    Tensor<2, 3> F0;
+    F0[0][0]                              = 0.93;
+    F0[1][1]                              = 1.02;
+    F0[2][2]                              = 1.04;
+    const TrilinosWrappers::MPI::Vector u = with_barrier.displacement(F0, 0.02);
+    TrilinosWrappers::MPI::Vector changed = with_barrier.forces(u, sn, false);
+    const TrilinosWrappers::MPI::Vector without =
+      stabilised.forces(u, sn, false);
+    changed -= without;
+    out() << "cell volume barrier 0.97 acts on the random deformation: "
+          << testing::yes(changed.l2_norm() > 0.1 * without.l2_norm())
+          << std::endl;
+    check(with_barrier, sn, "finite strain, cell volume weight 0.05, barrier");
+  }
   out() << (testing::all_passed ? "all checks passed" : "FAILED") << std::endl;
   return testing::all_passed ? 0 : 1;
 }

@@ -70,6 +70,9 @@ namespace densify
     /// Weight alpha of the cell's own volume change in the nodal-averaged
     /// F-bar (0: none, 1: plain elements).
     double cell_volume_stabilisation = 0.03;
+    /// Smallest own volume ratio V/V0 of a cell that meets no barrier (and
+    /// 1 / it the largest); 0: no barrier.
+    double cell_volume_barrier = 0.5;
     /// Largest estimated number of tetrahedra a run may mesh.
     unsigned int max_elements = 4000000;
   };

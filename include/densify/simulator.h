@@ -403,7 +403,10 @@ namespace densify
     std::vector<std::shared_ptr<const Material>> particle_material;
     /// Per particle: the F-bar's weight of the cell's own volume change
     /// (Mesh/Cell volume stabilisation, NodalAveraging).
-    std::vector<double>                    cell_volume_weights;
+    std::vector<double> cell_volume_weights;
+    /// The barrier against crushed cells (Mesh/Cell volume barrier), per
+    /// particle the material's bulk modulus; off without nodal averaging.
+    CellVolumeBarrier                      cell_volume_barrier;
     double                                 upper_initial = 0.;
     std::vector<std::pair<double, double>> punch_table;
     double                                 h_min = 0.;

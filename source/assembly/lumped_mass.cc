@@ -318,9 +318,16 @@ namespace densify
               cell_volume_weights[cell->material_id()] :
               0.;
           theta = (1. - alpha) * theta + alpha * trace(grad[e]);
+          // a cell beyond the barrier's band adds its own volume change
+          // with the barrier's stiffness (CellVolumeBarrier)
+          const double k_barrier =
+            volume_barrier.excess(std::log(V[e] / cell->measure())) != 0. ?
+              volume_barrier.modulus(cell->material_id()) :
+              0.;
           const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
           const SymmetricTensor<2, 3> sigma =
-            2. * mu * deviator(eps) + K * theta * unit_symmetric_tensor<3>();
+            2. * mu * deviator(eps) + (K * theta + k_barrier * trace(grad[e])) *
+                                        unit_symmetric_tensor<3>();
           for (const unsigned int v : cell->vertex_indices())
             {
               const Tensor<1, 3> f = V[e] * (sigma * g[e][v]);

@@ -678,6 +678,15 @@ namespace densify
               }
             beta[a] += w * (gamma - (finite ? p : 0.)) / (D * D);
           }
+        // the barrier against crushed cells (CellVolumeBarrier): the force
+        // V k e t_i, its derivative V k (t_i t_j - e h_i[c_j] h_j[c_i])
+        const double k_barrier =
+          finite ? c.volume * volume_barrier.modulus(c.material) : 0.;
+        const double e_barrier =
+          k_barrier > 0. ? volume_barrier.excess(std::log(s.j)) : 0.;
+        if (e_barrier != 0.)
+          for (unsigned int i = 0; i < 12; ++i)
+            cell_residual(i) += k_barrier * e_barrier * t[i];
         std::copy(c.dofs.begin(), c.dofs.end(), dofs.begin());
         residual.add(dofs, cell_residual);
         if (tangent == nullptr)
@@ -695,7 +704,10 @@ namespace densify
               double kij = A_grad[j][c.component[i]] * c.grad[i] - X[i] * t[j] -
                            t[i] * X_prime[j] + gamma_sum * t[i] * t[j];
               if (finite)
-                kij += p_sum * s.h[i][c.component[j]] * s.h[j][c.component[i]];
+                kij += (p_sum - k_barrier * e_barrier) *
+                       s.h[i][c.component[j]] * s.h[j][c.component[i]];
+              if (e_barrier != 0.)
+                kij += k_barrier * t[i] * t[j];
               cell_matrix(i, j) = kij;
             }
         if (placed)

@@ -95,6 +95,11 @@ namespace densify
         const double                  alpha_e  = cell_volume_weight(c.material);
         const double                  theta    = 1. - alpha_e;
         const double                  log_j    = finite ? std::log(j) : 0.;
+        // the barrier against crushed cells: V k e per unit d(ln j)/du
+        const double barrier = finite ?
+                                 c.volume * volume_barrier.modulus(c.material) *
+                                   volume_barrier.excess(log_j) :
+                                 0.;
         // one return mapping per cell: the deviator of the Kirchhoff stress,
         // shared by all four corners (see assemble())
         double     p_dummy;
@@ -146,7 +151,7 @@ namespace densify
                 M[r][J_] = c.volume * (tau_dev[r][0] * F_inv_T[0][J_] +
                                        tau_dev[r][1] * F_inv_T[1][J_] +
                                        tau_dev[r][2] * F_inv_T[2][J_]) +
-                           w * alpha_e * p_sum * F_inv_T[r][J_];
+                           (w * alpha_e * p_sum + barrier) * F_inv_T[r][J_];
             for (unsigned int i = 0; i < 12; ++i)
               {
                 const double       *m = M[c.component[i]];
@@ -200,7 +205,7 @@ namespace densify
             S[a] += w * p / D;
           }
         for (unsigned int i = 0; i < 12; ++i)
-          residual.add(c.dofs[i], cell_residual[i]);
+          residual.add(c.dofs[i], cell_residual[i] + barrier * t[i]);
       }
 
     // 3. patch terms: S_a b_a with b_a = d j_a / du = sum over the cells f

@@ -1,4 +1,5 @@
 // Reading particles from CSV files and checking sizes, overlaps, container.
+#include <densify/geometry/liggghts_dump.h>
 #include <densify/geometry/particles.h>
 
 #include <algorithm>
@@ -212,6 +213,10 @@ namespace densify
   read_particle_csv(const std::string &filename,
                     const std::string &default_material)
   {
+    // a LIGGGHTS/LAMMPS text dump instead, told by its first line
+    if (is_liggghts_dump(filename))
+      return read_liggghts_dump(filename, default_material);
+
     errno = 0;
     std::ifstream in(filename);
     if (!in)

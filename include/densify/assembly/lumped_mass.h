@@ -6,6 +6,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <densify/assembly/cell_volume_barrier.h>
 #include <densify/material/material.h>
 
 #include <memory>
@@ -167,6 +168,14 @@ namespace densify
       return factor;
     }
 
+    /// Include the barrier against crushed cells (NodalAveraging) in
+    /// stiffness_product().
+    void
+    set_cell_volume_barrier(const CellVolumeBarrier &barrier)
+    {
+      volume_barrier = barrier;
+    }
+
     /// Restore factors saved from scaling_factors() (same mesh).
     void
     set_scaling_factors(const std::vector<double> &saved)
@@ -181,7 +190,9 @@ namespace densify
     const std::vector<std::shared_ptr<const Material>> &materials;
     /// Per material id the F-bar's stabilisation weight alpha (NodalAveraging).
     std::vector<double> cell_volume_weights;
-    const MassScaling   scaling;
+    /// The barrier against crushed cells (off by default).
+    CellVolumeBarrier volume_barrier;
+    const MassScaling scaling;
     /// max(1, tangential / normal penalty).
     const double spring_ratio;
     /// Per active cell: mass-scaling factor, and the stable step with

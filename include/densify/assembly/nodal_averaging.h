@@ -12,6 +12,7 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <densify/assembly/cell_volume_barrier.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
 
@@ -46,11 +47,13 @@ namespace densify
    * material, the corner sees the blend
    * ln j_used = (1 - alpha) ln J_a + alpha ln J_e (at small strain
    * j_used = (1 - alpha) j_a + alpha j_e) instead of J_a, so that a cell
-   * keeps the bulk stiffness alpha kappa against a volume change of its own
-   * that its patch does not share (the mode that lets single cells crush
+   * keeps the bulk stiffness alpha^2 kappa against a volume change of its
+   * own that its patch does not share (the mode that lets single cells crush
    * under J2 flow; doc/theory.md, "Volumetric locking"). alpha = 0 is the
    * plain nodal-averaged F-bar, alpha = 1 the plain element. Forces and
-   * tangent remain the exact derivatives of the blended energy.
+   * tangent remain the exact derivatives of the blended energy. A cell whose
+   * own volume ratio leaves the band of set_cell_volume_barrier() meets the
+   * barrier's stiffness too (CellVolumeBarrier).
    *
    * Every rank holds the whole mesh (parallel::shared::Triangulation without
    * artificial cells) and a solution vector with all DoFs, so the vertex
@@ -75,6 +78,14 @@ namespace densify
     cell_volume_weight(const unsigned int material) const
     {
       return material < weights.size() ? weights[material] : 0.;
+    }
+
+    /// Stop the cells' own volume ratio at the band of @p barrier
+    /// (CellVolumeBarrier; off until this is called).
+    void
+    set_cell_volume_barrier(const CellVolumeBarrier &barrier)
+    {
+      volume_barrier = barrier;
     }
 
     /// Add the couplings of all DoFs of the cells around every vertex that
@@ -199,6 +210,8 @@ namespace densify
     std::vector<Patch> patches;
     /// Stabilisation weight alpha per material id.
     std::vector<double> weights;
+    /// The barrier against crushed cells (off by default).
+    CellVolumeBarrier volume_barrier;
     /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
     /// tangent terms; per vertex, the averaged volume measure, its
     /// logarithm (forces() with a cell volume weight) and the scalars S

@@ -34,6 +34,11 @@ namespace densify
    * Only the first non-comment line may be a header; fields are trimmed and
    * a trailing '\r' is ignored. Values are not checked here (see
    * check_particles()).
+   *
+   * A file whose first line that is not blank starts with "ITEM:" is a
+   * LIGGGHTS/LAMMPS text dump instead: its last snapshot is read by
+   * read_liggghts_dump() (metres to mm; @p default_material is then
+   * Particles/Materials, the name of each atom type).
    */
   std::vector<Particle>
   read_particle_csv(const std::string &filename,
