@@ -118,14 +118,19 @@ namespace densify
         "Particle materials: Sn, Fe, Cu (presets, doc/materials.md) or "
         "custom (the constants of subsection Material); one name for all "
         "particles, or a comma-separated list with one name per centre. "
-        "Used where the particle file has no material column.");
+        "Used where the particle file has no material column; for a "
+        "LIGGGHTS dump, atom type t gets the t-th name (or the one name).");
       prm.add_parameter(
         "Particle file",
         particles.particle_file,
         "CSV file with one particle per line, x,y,z,diameter[,material] in "
         "mm ('#' starts a comment; a header line is skipped), relative to "
         "the working directory; for scenes with many particles (Packing = "
-        "list). Empty: use Centres.");
+        "list). A LIGGGHTS or LAMMPS text dump (first line 'ITEM:', columns "
+        "x y z and radius or diameter in metres, optional id and type) is "
+        "read too: its last snapshot, in mm, with the small overlaps of the "
+        "DEM's soft contacts moved apart (scripts/packing/liggghts_fill.sh, "
+        "doc/user_guide.md). Empty: use Centres.");
       prm.add_parameter(
         "Material fractions",
         particles.material_fractions,
