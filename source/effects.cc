@@ -158,6 +158,13 @@ namespace densify
                                                      PoleHolding::none;
     if (e.poles != PoleHolding::none)
       {
+        // the springs join the vertices at centre +- radius e_z of a sphere
+        for (unsigned int i = 0; i < scene.particles.size(); ++i)
+          if (scene.particles[i].shape != ParticleShape::sphere)
+            throw std::runtime_error(
+              "Contact/Hold poles on axis is for spheres (particle " +
+              std::to_string(i) +
+              " is an ellipsoid or a surface particle): set it to false");
         for (unsigned int t = 0; t < n_tool_kinds; ++t)
           if (e.tool_friction[t] > 0)
             throw std::runtime_error(

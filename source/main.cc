@@ -270,6 +270,9 @@ main(int argc, char **argv)
       check_mesh_size(parameters, estimate);
       std::ostringstream what;
       what << scene.particles.size() << " particle(s)";
+      bool all_spheres = true;
+      for (const Particle &p : scene.particles)
+        all_spheres = all_spheres && p.shape == ParticleShape::sphere;
       if (parameters.tools.die_enabled && parameters.tools.lower_enabled &&
           scene.upper_initial > parameters.tools.lower_position)
         what << ", relative density " << std::fixed << std::setprecision(2)
@@ -278,10 +281,14 @@ main(int argc, char **argv)
                                              scene.upper_initial -
                                                parameters.tools.lower_position)
              << " % of the die up to the upper punch at "
-             << std::setprecision(3) << scene.upper_initial << " mm (spheres)";
-      what << ", mean coordination number " << std::fixed
-           << std::setprecision(2) << mean_coordination(scene.particles)
-           << std::defaultfloat;
+             << std::setprecision(3) << scene.upper_initial << " mm ("
+             << (all_spheres ? "spheres" : "the exact shapes' volumes") << ")"
+             << std::defaultfloat;
+      // contacts from centre distances: spheres only
+      if (all_spheres)
+        what << ", mean coordination number " << std::fixed
+             << std::setprecision(2) << mean_coordination(scene.particles)
+             << std::defaultfloat;
       what << "; about " << format_count(estimate.elements) << " tetrahedra, "
            << format_count(std::ceil(estimate.bytes / 1e8) / 10)
            << " GB of memory";

@@ -64,9 +64,11 @@ namespace densify
                         Patterns::Integer(1));
       prm.add_parameter("Packing seed",
                         particles.packing_seed,
-                        "Seed of the random layer and of the deposited bed "
-                        "(integer >= 0); the same seed gives the same "
-                        "particles, another seed others of the same kind.");
+                        "Seed of the random layer, of the deposited bed and "
+                        "of the random orientations of the particle file's "
+                        "ellipsoids and surface particles (integer >= 0); "
+                        "the same seed gives the same particles, another "
+                        "seed others of the same kind.");
       prm.add_parameter(
         "Size distribution",
         particles.size_distribution,
@@ -126,7 +128,15 @@ namespace densify
         "CSV file with one particle per line, x,y,z,diameter[,material] in "
         "mm ('#' starts a comment; a header line is skipped), relative to "
         "the working directory; for scenes with many particles (Packing = "
-        "list). A LIGGGHTS or LAMMPS text dump (first line 'ITEM:', columns "
+        "list). An optional sixth column gives the shape: 'sphere'; "
+        "'ellipsoid,diameter_y,diameter_z' (diameter is the one along the "
+        "body x axis); or a closed surface mesh file 'NAME.stl' (mm, "
+        "relative to the working directory, its centroid placed at x,y,z, "
+        "the diameter column left empty). Ellipsoids and STL particles take "
+        "three more columns angle_x,angle_y,angle_z (degrees, rotations "
+        "about the global x, y, then z axis); without them their "
+        "orientation is random from Packing seed (doc/user_guide.md, "
+        "'Ellipsoids and STL particles'). A LIGGGHTS or LAMMPS text dump (first line 'ITEM:', columns "
         "x y z and radius or diameter in metres, optional id and type) is "
         "read too: its last snapshot, in mm, with the small overlaps of the "
         "DEM's soft contacts moved apart (scripts/packing/liggghts_fill.sh, "

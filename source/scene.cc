@@ -5,6 +5,7 @@
 #include <densify/geometry/deposition.h>
 #include <densify/geometry/liggghts_dump.h>
 #include <densify/geometry/packing.h>
+#include <densify/geometry/particle_shape.h>
 #include <densify/material/factory.h>
 #include <densify/scene.h>
 
@@ -246,7 +247,8 @@ namespace densify
       }
     else if (!pp.particle_file.empty())
       {
-        particles = read_particle_csv(pp.particle_file, pp.materials);
+        particles =
+          read_particle_csv(pp.particle_file, pp.materials, pp.packing_seed);
         // a DEM bed (LIGGGHTS dump): its soft contacts overlap a little;
         // moved apart in the die and on the lower punch
         if (is_liggghts_dump(pp.particle_file))
@@ -316,7 +318,7 @@ namespace densify
     // the upper punch starts on the highest particle unless told otherwise
     double top = -std::numeric_limits<double>::max();
     for (const Particle &p : particles)
-      top = std::max(top, p.centre[2] + p.diameter / 2);
+      top = std::max(top, p.centre[2] + support(p, Point<3>(0., 0., 1.)));
     const std::string &init = prm.tools.upper_initial_position;
     if (init == "auto")
       scene.upper_initial = top;
@@ -393,13 +395,18 @@ namespace densify
       }
     MeshEstimate             estimate;
     std::map<double, double> per_diameter;
+    unsigned int             n_shaped = 0;
     for (const Particle &p : particles)
       {
-        auto it = per_diameter.find(p.diameter);
+        // spheres by diameter; every other shape by itself (a key of its
+        // own below zero)
+        const double key =
+          p.shape == ParticleShape::sphere ? p.diameter : -1. - n_shaped++;
+        auto it = per_diameter.find(key);
         if (it == per_diameter.end())
           {
             const double r      = p.diameter / 2;
-            const double volume = 4. / 3. * numbers::PI * r * r * r;
+            const double volume = particle_volume(p);
             double       n      = density * volume / (H * H * H);
             if (n_directions > 0 && h_r < H)
               {
@@ -418,7 +425,7 @@ namespace densify
                 n = std::min(n + n_directions * extra,
                              density * volume / (h_r * h_r * h_r));
               }
-            it = per_diameter.emplace(p.diameter, n).first;
+            it = per_diameter.emplace(key, n).first;
           }
         estimate.elements += it->second;
       }
@@ -472,12 +479,13 @@ namespace densify
   {
     double smallest = std::numeric_limits<double>::max();
     for (const Particle &p : particles)
-      smallest = std::min(smallest, p.diameter);
+      smallest = std::min(smallest, smallest_width(p));
     if (prm.mesh.element_size > smallest)
       {
         std::ostringstream message;
         message << "Mesh/Element size = " << prm.mesh.element_size
-                << " mm is larger than the smallest particle (diameter "
+                << " mm is larger than the smallest particle (diameter or "
+                   "smallest width "
                 << smallest << " mm), which cannot be meshed with it: give "
                 << "at most " << smallest << " mm (a fifth of it, "
                 << smallest / 5 << " mm, for a usable answer)";

@@ -43,7 +43,8 @@ namespace densify
     double elements = 0.;
     /// Memory of a run (bytes), roughly.
     double bytes = 0.;
-    /// Particle diameters, each meshed once.
+    /// Distinct meshes: sphere diameters, each meshed once, and every
+    /// particle of another shape.
     unsigned int distinct_diameters = 0;
   };
 

@@ -1,6 +1,7 @@
 // Broad-phase contact search: candidate pairs of overlapping bounding boxes
 // on a hashed uniform cell grid, and the brute-force reference.
 #include <densify/contact/broad_search.h>
+#include <densify/geometry/particle_shape.h>
 
 #include <algorithm>
 #include <cmath>
@@ -81,12 +82,13 @@ namespace densify
     boxes.reserve(particles.size());
     for (const Particle &p : particles)
       {
-        const double radius = 0.5 * p.diameter;
-        Point<3>     lower, upper;
+        // a sphere's radius, another shape's extent along each axis
+        Point<3> lower, upper;
         for (unsigned int d = 0; d < 3; ++d)
           {
-            lower[d] = p.centre[d] - radius;
-            upper[d] = p.centre[d] + radius;
+            const Tensor<1, 3> e = Point<3>::unit_vector(d);
+            lower[d]             = p.centre[d] - support(p, -e);
+            upper[d]             = p.centre[d] + support(p, e);
           }
         boxes.emplace_back(std::make_pair(lower, upper));
       }

@@ -24,9 +24,11 @@ namespace densify
       throw std::runtime_error(
         "multi-body mesh: too many particles for one material id each");
 
-    // One mesh per distinct diameter, centred at the origin.
-    std::map<double, TetMesh> meshes;
-    std::size_t               n_vertices = 0, n_cells = 0;
+    // One mesh per distinct sphere diameter, centred at the origin; one per
+    // particle of another shape (in its orientation).
+    std::map<double, TetMesh>       meshes;
+    std::map<unsigned int, TetMesh> shaped;
+    std::size_t                     n_vertices = 0, n_cells = 0;
     for (unsigned int i = 0; i < particles.size(); ++i)
       {
         const double diameter = particles[i].diameter;
@@ -37,15 +39,20 @@ namespace densify
               << " mm must be > 0 (Particles/Diameters or the particle file)";
             throw std::runtime_error(s.str());
           }
-        auto it = meshes.find(diameter);
-        if (it == meshes.end())
+        const TetMesh *mesh = nullptr;
+        if (particles[i].shape != ParticleShape::sphere)
+          mesh =
+            &shaped.emplace(i, mesh_particle(particles[i], spec)).first->second;
+        else
           {
-            SphereMeshSpec sphere = spec;
-            sphere.radius         = 0.5 * diameter;
-            it = meshes.emplace(diameter, mesh_sphere(sphere)).first;
+            auto it = meshes.find(diameter);
+            if (it == meshes.end())
+              it = meshes.emplace(diameter, mesh_particle(particles[i], spec))
+                     .first;
+            mesh = &it->second;
           }
-        n_vertices += it->second.vertices.size();
-        n_cells += it->second.cells.size();
+        n_vertices += mesh->vertices.size();
+        n_cells += mesh->cells.size();
       }
 
     // Concatenate translated copies. Every particle gets its own vertices,
@@ -57,7 +64,9 @@ namespace densify
     cells.reserve(n_cells);
     for (unsigned int i = 0; i < particles.size(); ++i)
       {
-        const TetMesh     &mesh   = meshes.at(particles[i].diameter);
+        const TetMesh     &mesh = particles[i].shape != ParticleShape::sphere ?
+                                    shaped.at(i) :
+                                    meshes.at(particles[i].diameter);
         const unsigned int offset = vertices.size();
         const Tensor<1, 3> shift  = particles[i].centre;
         for (const Point<3> &v : mesh.vertices)

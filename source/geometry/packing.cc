@@ -2,6 +2,7 @@
 #include <deal.II/base/numbers.h>
 
 #include <densify/geometry/packing.h>
+#include <densify/geometry/particle_shape.h>
 
 #include <algorithm>
 #include <array>
@@ -587,7 +588,7 @@ namespace densify
     require_positive("layer_relative_density", "height", height);
     double volume = 0.;
     for (const Particle &p : particles)
-      volume += numbers::PI / 6. * p.diameter * p.diameter * p.diameter;
+      volume += particle_volume(p);
     const double R = 0.5 * die_diameter;
     return volume / (numbers::PI * R * R * height);
   }

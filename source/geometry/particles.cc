@@ -1,5 +1,6 @@
 // Reading particles from CSV files and checking sizes, overlaps, container.
 #include <densify/geometry/liggghts_dump.h>
+#include <densify/geometry/particle_shape.h>
 #include <densify/geometry/particles.h>
 
 #include <algorithm>
@@ -10,6 +11,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -120,12 +123,37 @@ namespace densify
 
 
     /**
+     * How far particles @p a and @p b overlap (mm; negative: the gap between
+     * two spheres). A pair of which one is not a sphere is tested by
+     * shape_overlap() if their bounding spheres overlap by more than
+     * @p tolerance; @p inside and @p deepest tell where (see there).
+     */
+    double
+    overlap_depth(const Particle &a,
+                  const Particle &b,
+                  const double    tolerance,
+                  unsigned int   &inside,
+                  Point<3>       &deepest)
+    {
+      const double bounding =
+        0.5 * (a.diameter + b.diameter) - a.centre.distance(b.centre);
+      if ((a.shape == ParticleShape::sphere &&
+           b.shape == ParticleShape::sphere) ||
+          !(bounding > tolerance))
+        return bounding;
+      return shape_overlap(a, b, inside, deepest);
+    }
+
+
+
+    /**
      * Find the lexicographically first pair (i < j) of particles that
-     * overlap by more than @p tolerance. The particles are binned into a
-     * uniform grid of cell size = largest diameter (so overlapping particles
-     * are in the same or in neighbouring cells), the bins are sorted, and each
-     * particle is compared with the particles in the 27 surrounding bins:
-     * O(N log N) for any reasonable packing. Returns false if none overlap.
+     * overlap by more than @p tolerance (see overlap_depth()). The particles
+     * are binned into a uniform grid of cell size = largest diameter (so
+     * overlapping particles are in the same or in neighbouring cells), the bins
+     * are sorted, and each particle is compared with the particles in the 27
+     * surrounding bins: O(N log N) for any reasonable packing. Returns false if
+     * none overlap.
      */
     bool
     find_first_overlap(const std::vector<Particle> &particles,
@@ -188,11 +216,13 @@ namespace densify
                       const unsigned int j = it->second;
                       if (j <= i || j >= best_j)
                         continue;
-                      const double distance =
-                        particles[i].centre.distance(particles[j].centre);
-                      const double radii =
-                        0.5 * (particles[i].diameter + particles[j].diameter);
-                      if (radii - distance > tolerance)
+                      unsigned int inside = 0;
+                      Point<3>     deepest;
+                      if (overlap_depth(particles[i],
+                                        particles[j],
+                                        tolerance,
+                                        inside,
+                                        deepest) > tolerance)
                         best_j = j;
                     }
                 }
@@ -211,7 +241,8 @@ namespace densify
 
   std::vector<Particle>
   read_particle_csv(const std::string &filename,
-                    const std::string &default_material)
+                    const std::string &default_material,
+                    const unsigned int orientation_seed)
   {
     // a LIGGGHTS/LAMMPS text dump instead, told by its first line
     if (is_liggghts_dump(filename))
@@ -227,6 +258,14 @@ namespace densify
       }
 
     static const char *const names[4] = {"x", "y", "z", "diameter"};
+
+    // random orientations, one particle after the other
+    std::mt19937 random(orientation_seed);
+    auto         uniform = [&random]() {
+      return static_cast<double>(random()) / 4294967296.;
+    };
+    // a surface file read once for all its particles
+    std::map<std::string, Particle> surfaces;
 
     std::vector<Particle> particles;
     std::string           line;
@@ -251,23 +290,99 @@ namespace densify
           }
         seen_data = true;
 
-        if (fields.size() != 4 && fields.size() != 5)
+        const std::string shape = fields.size() > 5 ? fields[5] : "";
+        const bool        is_surface =
+          shape.size() > 4 && (shape.substr(shape.size() - 4) == ".stl" ||
+                               shape.substr(shape.size() - 4) == ".STL");
+        if (fields.size() < 4 || fields.size() > 11 ||
+            (fields.size() > 6 && shape == "sphere") ||
+            (shape == "ellipsoid" && fields.size() != 8 &&
+             fields.size() != 11) ||
+            (is_surface && fields.size() != 6 && fields.size() != 9))
           fail(where +
-               ": expected 4 or 5 comma-separated fields "
-               "x,y,z,diameter[,material], got " +
+               ": expected the comma-separated fields "
+               "x,y,z,diameter[,material[,sphere | ,ellipsoid,diameter_y,"
+               "diameter_z[,angle_x,angle_y,angle_z] | ,FILE.stl[,angle_x,"
+               "angle_y,angle_z]]], got " +
                std::to_string(fields.size()));
+        if (!shape.empty() && shape != "sphere" && shape != "ellipsoid" &&
+            !is_surface)
+          fail(where + ": field 6 (shape) '" + shape +
+               "' is not 'sphere', 'ellipsoid' or a file name ending in "
+               "'.stl'");
 
         Particle particle;
         double   numbers[4];
         for (unsigned int k = 0; k < 4; ++k)
-          if (!parse_number(fields[k], numbers[k]))
+          if (!(k == 3 && is_surface) && !parse_number(fields[k], numbers[k]))
             fail(where + ": field " + std::to_string(k + 1) + " (" + names[k] +
                  ") '" + fields[k] + "' is not a number");
+        if (is_surface && !fields[3].empty())
+          fail(where + ": field 4 (diameter) must be empty for a particle "
+                       "from a surface file (its size comes from the file)");
         particle.centre   = Point<3>(numbers[0], numbers[1], numbers[2]);
-        particle.diameter = numbers[3];
-        particle.material = (fields.size() == 5 && !fields[4].empty()) ?
+        particle.diameter = is_surface ? 0. : numbers[3];
+        particle.material = (fields.size() >= 5 && !fields[4].empty()) ?
                               fields[4] :
                               default_material;
+        if (shape == "ellipsoid" || is_surface)
+          {
+            // the numbers after the shape: diameters, then angles
+            const unsigned int  first = 6;
+            std::vector<double> values;
+            static const char  *value_names[5] = {
+               "diameter_y", "diameter_z", "angle_x", "angle_y", "angle_z"};
+            const unsigned int offset = is_surface ? 2 : 0;
+            for (unsigned int k = first; k < fields.size(); ++k)
+              {
+                double value = 0;
+                if (!parse_number(fields[k], value))
+                  fail(where + ": field " + std::to_string(k + 1) + " (" +
+                       value_names[k - first + offset] + ") '" + fields[k] +
+                       "' is not a number");
+                values.push_back(value);
+              }
+            const unsigned int n_diameters = is_surface ? 0 : 2;
+            Tensor<2, 3>       rotation;
+            if (values.size() == n_diameters + 3)
+              rotation = rotation_from_angles({{values[n_diameters],
+                                                values[n_diameters + 1],
+                                                values[n_diameters + 2]}});
+            else
+              {
+                std::array<double, 3> u;
+                for (double &x : u)
+                  x = uniform();
+                rotation = uniform_rotation(u);
+              }
+            try
+              {
+                if (is_surface)
+                  {
+                    auto it = surfaces.find(shape);
+                    if (it == surfaces.end())
+                      {
+                        Particle read;
+                        make_surface_particle(read, shape, rotation);
+                        it = surfaces.emplace(shape, read).first;
+                      }
+                    const Point<3>    centre   = particle.centre;
+                    const std::string material = particle.material;
+                    particle                   = it->second;
+                    particle.centre            = centre;
+                    particle.material          = material;
+                    particle.rotation          = rotation;
+                  }
+                else
+                  make_ellipsoid(particle,
+                                 {{numbers[3], values[0], values[1]}},
+                                 rotation);
+              }
+            catch (const std::exception &e)
+              {
+                fail(where + ": " + e.what());
+              }
+          }
         particles.push_back(particle);
       }
     if (in.bad())
@@ -299,43 +414,50 @@ namespace densify
                  " is not finite (" + where_to_move + ")");
       }
 
-    // The container.
+    // The container: a sphere's radius, or the extent of another shape
+    // (the largest distance of its points from the axis, above and below
+    // its centre).
     for (unsigned int i = 0; i < particles.size(); ++i)
       {
-        const Particle   &p    = particles[i];
-        const double      r    = 0.5 * p.diameter;
-        const std::string name = "particle " + std::to_string(i);
+        const Particle   &p      = particles[i];
+        const bool        sphere = p.shape == ParticleShape::sphere;
+        const std::string size   = sphere ? " mm + radius " : " mm + extent ";
+        const std::string name   = "particle " + std::to_string(i);
         if (container.has_die)
           {
             const double axis_distance = std::hypot(p.centre[0], p.centre[1]);
-            const double excess = axis_distance + r - container.die_radius;
+            const double outer         = axis_distance_extent(p);
+            const double r             = outer - axis_distance;
+            const double excess        = outer - container.die_radius;
             if (excess > tolerance)
               fail(name + " crosses the die wall by " + fmt(excess) +
-                   " mm (distance from axis " + fmt(axis_distance) +
-                   " mm + radius " + fmt(r) + " mm > die radius " +
-                   fmt(container.die_radius) + " mm): move it inwards in " +
-                   where_to_move +
+                   " mm (distance from axis " + fmt(axis_distance) + size +
+                   fmt(r) + " mm > die radius " + fmt(container.die_radius) +
+                   " mm): move it inwards in " + where_to_move +
                    " or set Tools/Die wall/Diameter to at least " +
-                   fmt(2. * (axis_distance + r)) + " mm");
+                   fmt(2. * outer) + " mm");
           }
         if (container.has_lower)
           {
+            const double r      = support(p, Point<3>(0., 0., -1.));
             const double excess = container.lower_z - (p.centre[2] - r);
             if (excess > tolerance)
               fail(name + " is below the lower punch by " + fmt(excess) +
-                   " mm (centre z " + fmt(p.centre[2]) + " mm - radius " +
-                   fmt(r) + " mm < lower punch face " + fmt(container.lower_z) +
+                   " mm (centre z " + fmt(p.centre[2]) +
+                   (sphere ? " mm - radius " : " mm - extent ") + fmt(r) +
+                   " mm < lower punch face " + fmt(container.lower_z) +
                    " mm): move it up in " + where_to_move +
                    " or set Tools/Lower punch/Position to at most " +
                    fmt(p.centre[2] - r) + " mm");
           }
         if (container.has_upper)
           {
+            const double r      = support(p, Point<3>(0., 0., 1.));
             const double excess = p.centre[2] + r - container.upper_z;
             if (excess > tolerance)
               fail(name + " is above the upper punch by " + fmt(excess) +
-                   " mm (centre z " + fmt(p.centre[2]) + " mm + radius " +
-                   fmt(r) + " mm > upper punch face " + fmt(container.upper_z) +
+                   " mm (centre z " + fmt(p.centre[2]) + size + fmt(r) +
+                   " mm > upper punch face " + fmt(container.upper_z) +
                    " mm): move it down in " + where_to_move +
                    " or set Tools/Upper punch/Initial position to at least " +
                    fmt(p.centre[2] + r) + " mm");
@@ -346,15 +468,29 @@ namespace densify
     unsigned int i = 0, j = 0;
     if (find_first_overlap(particles, tolerance, i, j))
       {
-        const double distance =
-          particles[i].centre.distance(particles[j].centre);
-        const double radii =
-          0.5 * (particles[i].diameter + particles[j].diameter);
-        const auto [d, r] = fmt_distinct(distance, radii);
+        if (particles[i].shape == ParticleShape::sphere &&
+            particles[j].shape == ParticleShape::sphere)
+          {
+            const double distance =
+              particles[i].centre.distance(particles[j].centre);
+            const double radii =
+              0.5 * (particles[i].diameter + particles[j].diameter);
+            const auto [d, r] = fmt_distinct(distance, radii);
+            fail("particles " + std::to_string(i) + " and " +
+                 std::to_string(j) + " overlap by " + fmt(radii - distance) +
+                 " mm (centre distance " + d + " mm < sum of radii " + r +
+                 " mm): move them apart in " + where_to_move);
+          }
+        unsigned int inside = 0;
+        Point<3>     deepest;
+        const double depth =
+          shape_overlap(particles[i], particles[j], inside, deepest);
+        const unsigned int a = inside == 0 ? i : j, b = inside == 0 ? j : i;
         fail("particles " + std::to_string(i) + " and " + std::to_string(j) +
-             " overlap by " + fmt(radii - distance) + " mm (centre distance " +
-             d + " mm < sum of radii " + r + " mm): move them apart in " +
-             where_to_move);
+             " overlap by at least " + fmt(depth) + " mm (the point " +
+             fmt(deepest) + " of particle " + std::to_string(a) +
+             "'s surface lies " + fmt(depth) + " mm inside particle " +
+             std::to_string(b) + "): move them apart in " + where_to_move);
       }
   }
 } // namespace densify

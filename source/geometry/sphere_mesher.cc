@@ -1,10 +1,15 @@
-// Tetrahedral meshes of single spheres through the gmsh C++ API.
+// Tetrahedral meshes of single particles (spheres, ellipsoids, closed
+// surfaces) through the gmsh C++ API.
+#include <deal.II/base/numbers.h>
+
+#include <densify/geometry/particle_shape.h>
 #include <densify/geometry/sphere_mesher.h>
 
 #include <gmsh.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -65,17 +70,17 @@ namespace densify
 
     /**
      * The MathEval expression of the size field
-     * h = Min(element_size, refined + growth * Min_k |x - p_k|), p_k = R
-     * d_k/|d_k|.
+     * h = Min(element_size, refined + growth * Min_k |x - p_k|) for the
+     * refinement points @p points.
      */
     std::string
-    size_field_expression(const SphereMeshSpec &spec)
+    size_field_expression(const SphereMeshSpec        &spec,
+                          const std::vector<Point<3>> &points)
     {
       std::string distance;
-      for (const Tensor<1, 3> &direction : spec.refinement_directions)
+      for (const Point<3> &p : points)
         {
-          const Tensor<1, 3> p = spec.radius * direction / direction.norm();
-          const std::string  d = "Sqrt((x-" + number(p[0]) + ")^2+(y-" +
+          const std::string d = "Sqrt((x-" + number(p[0]) + ")^2+(y-" +
                                 number(p[1]) + ")^2+(z-" + number(p[2]) +
                                 ")^2)";
           distance = distance.empty() ? d : "Min(" + distance + "," + d + ")";
@@ -130,12 +135,18 @@ namespace densify
 
 
 
-    /// Mesh the current gmsh model and copy the linear tets into @p mesh.
+    /**
+     * Build the geometry by @p build in the current gmsh model, mesh it with
+     * the size field of @p spec refined towards @p points and copy the
+     * linear tets into @p mesh.
+     */
     void
-    mesh_current_model(const SphereMeshSpec &spec, TetMesh &mesh)
+    mesh_current_model(const SphereMeshSpec        &spec,
+                       const std::vector<Point<3>> &points,
+                       const std::function<void()> &build,
+                       TetMesh                     &mesh)
     {
-      gmsh::model::occ::addSphere(0., 0., 0., spec.radius);
-      gmsh::model::occ::synchronize();
+      build();
 
       // Options are global in gmsh: set every one that matters on each call.
       gmsh::option::setNumber("General.NumThreads", 1);
@@ -144,7 +155,7 @@ namespace densify
       gmsh::option::setNumber("Mesh.ElementOrder", 1);
       gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.);
       gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-      if (spec.refinement_directions.empty())
+      if (points.empty())
         {
           gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
           gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
@@ -154,9 +165,8 @@ namespace densify
       else
         {
           const int field = gmsh::model::mesh::field::add("MathEval");
-          gmsh::model::mesh::field::setString(field,
-                                              "F",
-                                              size_field_expression(spec));
+          gmsh::model::mesh::field::setString(
+            field, "F", size_field_expression(spec, points));
           gmsh::model::mesh::field::setAsBackgroundMesh(field);
           gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
           gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
@@ -221,6 +231,81 @@ namespace densify
             throw std::string("gmsh produced a tetrahedron of zero volume");
         }
     }
+
+
+
+    /**
+     * Mesh in a gmsh model of its own (see mesh_sphere()); @p what names the
+     * body in an error message.
+     */
+    TetMesh
+    mesh_in_own_model(const SphereMeshSpec        &spec,
+                      const std::vector<Point<3>> &points,
+                      const std::function<void()> &build,
+                      const std::string           &what)
+    {
+      static unsigned int n_models = 0;
+      const std::string   model =
+        "densify-particle-" + std::to_string(n_models++);
+
+      TetMesh     mesh;
+      bool        model_added = false;
+      std::string previous_model;
+      try
+        {
+          ensure_gmsh_initialized();
+          gmsh::model::getCurrent(previous_model);
+          gmsh::model::add(model);
+          model_added = true;
+          mesh_current_model(spec, points, build, mesh);
+          gmsh::model::remove();
+          model_added = false;
+        }
+      catch (...)
+        {
+          std::string message;
+          try
+            {
+              throw;
+            }
+          catch (const std::string &s)
+            {
+              message = s;
+            }
+          catch (const std::exception &e)
+            {
+              message = e.what();
+            }
+          catch (...)
+            {
+              message = "unknown error";
+            }
+          // Leave gmsh usable: drop the half-built model.
+          if (model_added)
+            try
+              {
+                gmsh::model::setCurrent(model);
+                gmsh::model::remove();
+                gmsh::model::setCurrent(previous_model);
+              }
+            catch (...)
+              {}
+          std::replace(message.begin(), message.end(), '\n', ' ');
+          std::ostringstream s;
+          s << "gmsh failed to mesh " << what << " with element size "
+            << spec.element_size << " mm: " << message;
+          throw std::runtime_error(s.str());
+        }
+
+      // Leave the model that was current before current again.
+      try
+        {
+          gmsh::model::setCurrent(previous_model);
+        }
+      catch (...)
+        {}
+      return mesh;
+    }
   } // namespace
 
 
@@ -229,67 +314,113 @@ namespace densify
   mesh_sphere(const SphereMeshSpec &spec)
   {
     check_spec(spec);
-
-    static unsigned int n_models = 0;
-    const std::string   model = "densify-sphere-" + std::to_string(n_models++);
-
-    TetMesh     mesh;
-    bool        model_added = false;
-    std::string previous_model;
+    std::vector<Point<3>> points;
+    for (const Tensor<1, 3> &direction : spec.refinement_directions)
+      points.emplace_back(spec.radius * direction / direction.norm());
+    std::ostringstream what;
+    what << "a sphere of radius " << spec.radius << " mm";
     try
       {
-        ensure_gmsh_initialized();
-        gmsh::model::getCurrent(previous_model);
-        gmsh::model::add(model);
-        model_added = true;
-        mesh_current_model(spec, mesh);
-        gmsh::model::remove();
-        model_added = false;
+        return mesh_in_own_model(
+          spec,
+          points,
+          [&spec]() {
+            gmsh::model::occ::addSphere(0., 0., 0., spec.radius);
+            gmsh::model::occ::synchronize();
+          },
+          what.str());
       }
-    catch (...)
+    catch (const std::runtime_error &e)
       {
-        std::string message;
-        try
-          {
-            throw;
-          }
-        catch (const std::string &s)
-          {
-            message = s;
-          }
-        catch (const std::exception &e)
-          {
-            message = e.what();
-          }
-        catch (...)
-          {
-            message = "unknown error";
-          }
-        // Leave gmsh usable: drop the half-built model.
-        if (model_added)
-          try
-            {
-              gmsh::model::setCurrent(model);
-              gmsh::model::remove();
-              gmsh::model::setCurrent(previous_model);
-            }
-          catch (...)
-            {}
-        std::replace(message.begin(), message.end(), '\n', ' ');
+        throw std::runtime_error(std::string("sphere mesher: ") + e.what());
+      }
+  }
+
+
+
+  TetMesh
+  mesh_particle(const Particle &particle, const SphereMeshSpec &spec)
+  {
+    if (particle.shape == ParticleShape::sphere)
+      {
+        SphereMeshSpec sphere = spec;
+        sphere.radius         = particle.diameter / 2;
+        return mesh_sphere(sphere);
+      }
+    SphereMeshSpec checked = spec;
+    checked.radius         = particle.diameter / 2;
+    check_spec(checked);
+
+    // the refinement points: where the particle reaches farthest along each
+    // direction (global), in the body frame
+    std::vector<Point<3>> points;
+    for (const Tensor<1, 3> &direction : spec.refinement_directions)
+      points.emplace_back(
+        body_support_point(particle, direction / direction.norm()));
+
+    std::function<void()> build;
+    std::string           what;
+    if (particle.shape == ParticleShape::ellipsoid)
+      {
+        const Tensor<1, 3> a = particle.semi_axes;
+        build                = [a]() {
+          const int tag = gmsh::model::occ::addSphere(0., 0., 0., 1.);
+          gmsh::model::occ::dilate({{3, tag}}, 0., 0., 0., a[0], a[1], a[2]);
+          gmsh::model::occ::synchronize();
+        };
         std::ostringstream s;
-        s << "sphere mesher: gmsh failed to mesh a sphere of radius "
-          << spec.radius << " mm with element size " << spec.element_size
-          << " mm: " << message;
-        throw std::runtime_error(s.str());
+        s << "an ellipsoid of diameters " << 2 * a[0] << ", " << 2 * a[1]
+          << ", " << 2 * a[2] << " mm";
+        what = s.str();
+      }
+    else
+      {
+        const SurfaceMesh &surface = *particle.surface;
+        build                      = [&surface]() {
+          // the closed triangulation as a discrete surface, split at sharp
+          // edges into patches gmsh can parametrise and mesh again
+          const int                tag = gmsh::model::addDiscreteEntity(2);
+          std::vector<std::size_t> node_tags;
+          std::vector<double>      coordinates;
+          for (std::size_t v = 0; v < surface.vertices.size(); ++v)
+            {
+              node_tags.push_back(v + 1);
+              for (unsigned int d = 0; d < 3; ++d)
+                coordinates.push_back(surface.vertices[v][d]);
+            }
+          gmsh::model::mesh::addNodes(2, tag, node_tags, coordinates);
+          std::vector<std::size_t> element_tags, element_nodes;
+          for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+            {
+              element_tags.push_back(t + 1);
+              for (unsigned int k = 0; k < 3; ++k)
+                element_nodes.push_back(surface.triangles[t][k] + 1);
+            }
+          gmsh::model::mesh::addElementsByType(tag,
+                                               2,
+                                               element_tags,
+                                               element_nodes);
+          gmsh::model::mesh::classifySurfaces(40. * numbers::PI / 180.,
+                                              true,
+                                              true,
+                                              numbers::PI);
+          gmsh::model::mesh::createGeometry();
+          gmsh::vectorpair surfaces;
+          gmsh::model::getEntities(surfaces, 2);
+          std::vector<int> surface_tags;
+          for (const auto &entity : surfaces)
+            surface_tags.push_back(entity.second);
+          const int loop = gmsh::model::geo::addSurfaceLoop(surface_tags);
+          gmsh::model::geo::addVolume({loop});
+          gmsh::model::geo::synchronize();
+        };
+        what = "the surface of '" + particle.surface_file + "'";
       }
 
-    // Leave the model that was current before current again.
-    try
-      {
-        gmsh::model::setCurrent(previous_model);
-      }
-    catch (...)
-      {}
+    TetMesh mesh = mesh_in_own_model(spec, points, build, what);
+    // into the global orientation; a rotation keeps the Jacobians positive
+    for (Point<3> &v : mesh.vertices)
+      v = Point<3>(particle.rotation * Tensor<1, 3>(v));
     return mesh;
   }
 } // namespace densify

@@ -34,8 +34,9 @@ namespace densify
                 const double          margin);
 
   /**
-   * The axis-aligned bounding box of each particle (a sphere): centre -/+
-   * diameter/2 in each direction. For deformed particles the caller builds
+   * The axis-aligned bounding box of each particle: centre -/+ its extent
+   * along each axis (a sphere's radius; an ellipsoid's or a surface's
+   * support() in that direction). For deformed particles the caller builds
    * the boxes from the current vertex positions instead.
    */
   std::vector<BoundingBox<3>>

@@ -13,8 +13,9 @@ namespace densify
 {
   /**
    * Build the multi-body triangulation: each particle is meshed by
-   * mesh_sphere() (meshes are cached by diameter, so equal spheres are meshed
-   * once and translated), and the union of all vertices and cells is handed
+   * mesh_particle() (sphere meshes are cached by diameter, so equal spheres
+   * are meshed once and translated; every ellipsoid and surface particle is
+   * meshed on its own), and the union of all vertices and cells is handed
    * to Triangulation::create_triangulation() directly (not
    * merge_triangulations(), which would glue touching particles). Cell
    * material_id = particle index. @p spec.radius is ignored (taken from each

@@ -95,7 +95,8 @@ namespace densify
 
   /**
    * The relative density of @p particles in a die of inner diameter
-   * @p die_diameter filled to @p height: the sum of the sphere volumes
+   * @p die_diameter filled to @p height: the sum of the particle volumes
+   * (particle_volume(): spheres, ellipsoids, closed surfaces)
    * divided by pi R^2 height (R = die_diameter / 2). Throws
    * std::runtime_error if @p die_diameter or @p height is not positive.
    */

@@ -4,6 +4,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <densify/geometry/particles.h>
+
 #include <array>
 #include <vector>
 
@@ -52,4 +54,19 @@ namespace densify
    */
   TetMesh
   mesh_sphere(const SphereMeshSpec &spec);
+
+  /**
+   * Mesh one particle with linear tetrahedra, vertices relative to its
+   * centre (global = centre + vertex), in its orientation. A sphere is
+   * mesh_sphere() of its radius. An ellipsoid is an OCC unit sphere dilated
+   * to its semi-axes, a surface particle its closed triangulation split at
+   * edges sharper than 40 degrees into patches that gmsh meshes again with
+   * the element size; both are meshed in their body frame and turned by
+   * their rotation. The refinement directions of @p spec (global) refine the
+   * mesh towards the points where the particle reaches farthest along them
+   * (the poles of a sphere). @p spec.radius is ignored. Throws
+   * std::runtime_error with a one-line message if gmsh fails.
+   */
+  TetMesh
+  mesh_particle(const Particle &particle, const SphereMeshSpec &spec);
 } // namespace densify
