@@ -1,5 +1,7 @@
 // Reading the last snapshot of a LIGGGHTS (LAMMPS) text dump as particles,
 // and moving the DEM contact overlaps of a bed apart.
+#include <deal.II/base/utilities.h>
+
 #include <densify/geometry/liggghts_dump.h>
 
 #include <algorithm>
@@ -24,20 +26,6 @@ namespace densify
 
     /// The most Jacobi sweeps of separate_overlaps().
     constexpr unsigned int max_sweeps = 100000;
-
-    /// Remove leading and trailing white space (and a trailing '\r').
-    std::string
-    trim(const std::string &s)
-    {
-      const char *ws    = " \t\r\n\f\v";
-      const auto  first = s.find_first_not_of(ws);
-      if (first == std::string::npos)
-        return "";
-      const auto last = s.find_last_not_of(ws);
-      return s.substr(first, last - first + 1);
-    }
-
-
 
     /// The fields of @p line separated by white space.
     std::vector<std::string>
@@ -207,7 +195,7 @@ namespace densify
     std::string   line;
     while (in && std::getline(in, line))
       {
-        const std::string text = trim(line);
+        const std::string text = Utilities::trim(line);
         if (!text.empty())
           return is_item(text, "ITEM:");
       }
@@ -237,7 +225,7 @@ namespace densify
     while (std::getline(in, line))
       {
         ++line_number;
-        if (trim(line) == "ITEM: TIMESTEP")
+        if (Utilities::trim(line) == "ITEM: TIMESTEP")
           {
             start      = line_start;
             start_line = line_number;
@@ -258,7 +246,7 @@ namespace densify
       if (!std::getline(in, text))
         return false;
       ++line_number;
-      text = trim(text);
+      text = Utilities::trim(text);
       return true;
     };
     auto where = [&]() { return filename + ":" + std::to_string(line_number); };
