@@ -2,6 +2,7 @@
 // and overlaps.
 #include <deal.II/base/numbers.h>
 
+#include <densify/contact/closest_point.h>
 #include <densify/geometry/particle_shape.h>
 
 #include <algorithm>
@@ -150,37 +151,15 @@ namespace densify
 
 
 
-    /// The distance from @p x to the triangle (a, b, c) (Ericson,
-    /// Real-Time Collision Detection, 5.1.5).
+    /// The distance from @p x to the triangle (a, b, c).
     double
     distance_to_triangle(const Point<3> &x,
                          const Point<3> &a,
                          const Point<3> &b,
                          const Point<3> &c)
     {
-      const Tensor<1, 3> ab = b - a, ac = c - a, ap = x - a;
-      const double       d1 = ab * ap, d2 = ac * ap;
-      if (d1 <= 0 && d2 <= 0)
-        return x.distance(a);
-      const Tensor<1, 3> bp = x - b;
-      const double       d3 = ab * bp, d4 = ac * bp;
-      if (d3 >= 0 && d4 <= d3)
-        return x.distance(b);
-      const double vc = d1 * d4 - d3 * d2;
-      if (vc <= 0 && d1 >= 0 && d3 <= 0)
-        return x.distance(a + d1 / (d1 - d3) * ab);
-      const Tensor<1, 3> cp = x - c;
-      const double       d5 = ab * cp, d6 = ac * cp;
-      if (d6 >= 0 && d5 <= d6)
-        return x.distance(c);
-      const double vb = d5 * d2 - d1 * d6;
-      if (vb <= 0 && d2 >= 0 && d6 <= 0)
-        return x.distance(a + d2 / (d2 - d6) * ac);
-      const double va = d3 * d6 - d5 * d4;
-      if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-        return x.distance(b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b));
-      const double denominator = 1. / (va + vb + vc);
-      return x.distance(a + ab * (vb * denominator) + ac * (vc * denominator));
+      const std::array<double, 3> l = closest_on_triangle(x, a, b, c);
+      return x.distance(a + l[1] * (b - a) + l[2] * (c - a));
     }
 
 
