@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <densify/geometry/liggghts_dump.h>
+#include <densify/geometry/number_field.h>
 
 #include <algorithm>
 #include <array>
@@ -37,21 +38,6 @@ namespace densify
       while (in >> field)
         fields.push_back(field);
       return fields;
-    }
-
-
-
-    /// Parse a whole field as a finite number; false if it is not one.
-    bool
-    parse_number(const std::string &field, double &value)
-    {
-      if (field.empty())
-        return false;
-      char *end = nullptr;
-      errno     = 0;
-      value     = std::strtod(field.c_str(), &end);
-      return end == field.c_str() + field.size() && errno == 0 &&
-             std::isfinite(value);
     }
 
 

@@ -1,5 +1,6 @@
 // Reading particles from CSV files and checking sizes, overlaps, container.
 #include <densify/geometry/liggghts_dump.h>
+#include <densify/geometry/number_field.h>
 #include <densify/geometry/particle_shape.h>
 #include <densify/geometry/particles.h>
 
@@ -50,21 +51,6 @@ namespace densify
           begin = end + 1;
         }
       return fields;
-    }
-
-
-
-    /// Parse a whole field as a finite number; false if it is not one.
-    bool
-    parse_number(const std::string &field, double &value)
-    {
-      if (field.empty())
-        return false;
-      char *end = nullptr;
-      errno     = 0;
-      value     = std::strtod(field.c_str(), &end);
-      return end == field.c_str() + field.size() && errno == 0 &&
-             std::isfinite(value);
     }
 
 
