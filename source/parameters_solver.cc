@@ -237,9 +237,13 @@ namespace densify
         "(dimensionless, 0 <= r <= 10; 0: not checked). A run that leaves "
         "it is not quasi-static: it stops with exit code 1, names the "
         "entry to raise (Number of steps) and keeps a checkpoint of the "
-        "last station within the limits. Checked once the internal work "
-        "exceeds that of a particle compressed elastically to a strain of "
-        "1e-6. Mass scaling = none (high-speed compaction, where inertia is "
+        "last station within the limits. Checked from the first station "
+        "whose upper punch force reaches the force that brings the "
+        "smallest, weakest particle's cross-section to its initial yield "
+        "stress (pi D^2 sigma_y / 4; for laws that do not yield, the stress "
+        "of an elastic strain of 1e-3, E / 1000): before it a loose bed "
+        "rearranges "
+        "without a compact that carries the punch. Mass scaling = none (high-speed compaction, where inertia is "
         "part of the answer) is not checked.",
         Patterns::Double(0., 10.));
       prm.add_parameter(
@@ -252,9 +256,9 @@ namespace densify
         "packing cancel and a lasting imbalance does not); dimensionless, 0 "
         "<= r <= 10; 0: not checked. A quasi-static compact carries the "
         "upper punch's load to the lower punch and the die wall. Same stop "
-        "and scope as Maximum kinetic energy ratio; checked once the upper "
-        "punch force exceeds that of a particle compressed elastically to a "
-        "strain of 1e-6 (E D^2 1e-6).",
+        "and scope as Maximum kinetic energy ratio, and checked while the "
+        "mean upper punch force is at least the force from which that one "
+        "is checked.",
         Patterns::Double(0., 10.));
     }
     prm.leave_subsection();

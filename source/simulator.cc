@@ -817,7 +817,7 @@ namespace densify
         // the snapshot for the guard's checkpoint at most every 50 times
         // its own cost in run time (every station of the light layer, every
         // few of the paper scene), so that it costs at most 2 %
-        if (guard.active() && step < n_steps &&
+        if (guard.judging() && step < n_steps &&
             s.wall_seconds - guard_snapshot_wall >= 50. * guard_snapshot_cost)
           {
             Timer snapshot;

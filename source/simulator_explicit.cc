@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -351,20 +352,21 @@ namespace densify
       return limits;
     limits.kinetic_ratio   = prm.explicit_dynamics.max_kinetic_ratio;
     limits.force_imbalance = prm.explicit_dynamics.max_force_imbalance;
-    // the floors: the force and the work of a particle compressed
-    // elastically to a strain of 1e-6 (E D^2 1e-6 and its work over
-    // D 1e-6, for the stiffest, largest particle), far below any
-    // compaction's: a scene at rest has neither forces nor work to compare
-    double force = 0., work = 0.;
+    // the guard judges from the force that brings the cross-section of the
+    // smallest, weakest particle to its initial yield stress (for laws that
+    // do not yield, to the stress of an elastic strain of 0.1 %): below it
+    // a loose bed rearranges, dynamically under mass scaling, before any
+    // compact carries the punch
+    limits.load_floor = std::numeric_limits<double>::infinity();
     for (unsigned int p = 0; p < particles.size(); ++p)
       {
-        const double D = particles[p].diameter;
-        const double F = 1e-6 * particle_material[p]->youngs_modulus() * D * D;
-        force          = std::max(force, F);
-        work           = std::max(work, F * 1e-6 * D / 2.);
+        const Material &material = *particle_material[p];
+        const double    stress   = std::min(material.initial_yield_stress(),
+                                       1e-3 * material.youngs_modulus());
+        const double    D        = particles[p].diameter;
+        limits.load_floor =
+          std::min(limits.load_floor, stress * numbers::PI * D * D / 4.);
       }
-    limits.force_floor = force;
-    limits.work_floor  = work;
     return limits;
   }
 
@@ -383,7 +385,8 @@ namespace densify
          << "; raise Explicit/Number of steps (now "
          << prm.explicit_dynamics.n_steps << ")";
     if (guard_snapshot.bytes.empty())
-      text << "; no earlier station of this run was within the limits, so "
+      text << "; no earlier station of this run was judged within the "
+              "limits, so "
               "no checkpoint is written";
     else
       {

@@ -21,22 +21,33 @@ namespace densify
 
 
 
+  bool
+  QuasiStaticGuard::judging() const
+  {
+    return active() && loaded;
+  }
+
+
+
   std::string
   QuasiStaticGuard::add(const StepStatistics &s)
   {
-    std::ostringstream text;
-    text << std::setprecision(3);
-    const double ratio = s.kinetic_energy / s.internal_work;
-    if (limits.kinetic_ratio > 0. && s.internal_work > limits.work_floor &&
-        !(ratio <= limits.kinetic_ratio))
-      text << "KE/IE " << 100. * ratio
-           << " % above Explicit/Maximum kinetic energy ratio = "
-           << 100. * limits.kinetic_ratio << " %";
-
     forces.emplace_back(s.upper_punch_force,
                         s.lower_punch_force + s.die_wall_force);
     if (forces.size() > window)
       forces.pop_front();
+    loaded = loaded || std::abs(s.upper_punch_force) >= limits.load_floor;
+    if (!loaded)
+      return "";
+
+    std::ostringstream text;
+    text << std::setprecision(3);
+    const double ratio = s.kinetic_energy / s.internal_work;
+    if (limits.kinetic_ratio > 0. && !(ratio <= limits.kinetic_ratio))
+      text << "KE/IE " << 100. * ratio
+           << " % above Explicit/Maximum kinetic energy ratio = "
+           << 100. * limits.kinetic_ratio << " %";
+
     double upper = 0., carried = 0.;
     for (const auto &[u, c] : forces)
       {
@@ -46,7 +57,7 @@ namespace densify
     upper /= forces.size();
     carried /= forces.size();
     const double imbalance = std::abs(upper - carried) / std::abs(upper);
-    if (limits.force_imbalance > 0. && std::abs(upper) > limits.force_floor &&
+    if (limits.force_imbalance > 0. && std::abs(upper) >= limits.load_floor &&
         !(imbalance <= limits.force_imbalance))
       text << (text.tellp() > 0 ? " and " : "") << "F_upper " << upper
            << " N against F_lower + F_die " << carried

@@ -126,6 +126,13 @@ namespace densify
       return std::isfinite(parameters.sigma0);
     }
 
+    /// sigma_y(0) (MPa); infinite for Hencky hyperelasticity.
+    double
+    initial_yield_stress() const override
+    {
+      return parameters.sigma0;
+    }
+
     /// Always false.
     bool
     is_linear() const override

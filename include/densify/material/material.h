@@ -5,6 +5,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -93,6 +94,13 @@ namespace densify
     /// Young's modulus (MPa), used to scale penalties and stabilisation.
     virtual double
     youngs_modulus() const = 0;
+
+    /// Initial yield stress (MPa); infinite for laws that do not yield.
+    virtual double
+    initial_yield_stress() const
+    {
+      return std::numeric_limits<double>::infinity();
+    }
 
     /// P-wave modulus lambda + 2 mu of the elastic response (MPa): with the
     /// density it gives the dilatational wave speed, hence the stable time

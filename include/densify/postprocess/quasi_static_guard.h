@@ -19,11 +19,14 @@ namespace densify
     /// Largest mean of F_upper - F_lower - F_die over the last
     /// QuasiStaticGuard::window stations as a fraction of their mean F_upper.
     double force_imbalance = 0.;
-    /// Internal work (mJ) below which the kinetic energy is not compared
-    /// with it (a scene at rest has neither).
-    double work_floor = 0.;
-    /// Mean upper punch force (N) below which the forces are not compared.
-    double force_floor = 0.;
+    /**
+     * Upper punch force (N) from which the guard judges: the force that
+     * brings the smallest, weakest particle's cross-section to its initial
+     * yield stress. Below it a loose bed rearranges, which mass scaling
+     * makes dynamic without a compact that carries the punch; the limits
+     * speak of the compaction, not of the rearrangement.
+     */
+    double load_floor = 0.;
   };
 
   /**
@@ -32,7 +35,9 @@ namespace densify
    * over the last stations, so that the vibrations of a loose packing,
    * which move the lower punch force above and below the upper one from
    * station to station, cancel, and a lasting imbalance (a compact that
-   * accelerates, or a lower punch that carries nothing) does not.
+   * accelerates, or a lower punch that carries nothing) does not. Both
+   * are checked from the first station whose upper punch force reaches
+   * QuasiStaticLimits::load_floor on.
    */
   class QuasiStaticGuard
   {
@@ -47,6 +52,12 @@ namespace densify
     bool
     active() const;
 
+    /// Whether the upper punch force has reached
+    /// QuasiStaticLimits::load_floor at a station, from which on the limits
+    /// are checked.
+    bool
+    judging() const;
+
     /**
      * Add station @p s; returns what it breaks, as the start of an error
      * line ("KE/IE 55 % above Explicit/Maximum kinetic energy ratio =
@@ -59,5 +70,7 @@ namespace densify
     const QuasiStaticLimits limits;
     /// F_upper and F_lower + F_die of the last stations.
     std::deque<std::pair<double, double>> forces;
+    /// See judging().
+    bool loaded = false;
   };
 } // namespace densify

@@ -1,0 +1,83 @@
+// The quasi-static guard of explicit runs (quasi_static_guard.h) on
+// synthetic stations:
+// - a loose bed's stations, whose upper punch force stays below the load
+//   floor, are not judged, whatever their kinetic energy (KE/IE 200 %) and
+//   force balance (nothing carried);
+// - the first station that reaches the floor arms the guard: from it on
+//   KE/IE above the limit is a breach, and so is a lasting imbalance of the
+//   force means over the last ten stations, which a single station's swing
+//   does not make;
+// - once armed the guard stays armed, but the force balance is not judged
+//   while the mean upper punch force is below the floor (an unloading).
+#include <densify/postprocess/quasi_static_guard.h>
+
+#include <iostream>
+#include <string>
+
+using namespace densify;
+
+namespace
+{
+  StepStatistics
+  station(const double upper,
+          const double carried,
+          const double kinetic,
+          const double internal)
+  {
+    StepStatistics s;
+    s.upper_punch_force = upper;
+    s.lower_punch_force = carried;
+    s.kinetic_energy    = kinetic;
+    s.internal_work     = internal;
+    return s;
+  }
+
+  void
+  report(const std::string &what, const std::string &breach)
+  {
+    std::cout << what << ": " << (breach.empty() ? "within the limits" : breach)
+              << std::endl;
+  }
+} // namespace
+
+
+
+int
+main()
+{
+  QuasiStaticLimits limits;
+  limits.kinetic_ratio   = 0.25;
+  limits.force_imbalance = 0.5;
+  limits.load_floor      = 100.;
+
+  QuasiStaticGuard guard(limits);
+  std::cout << "active " << guard.active() << ", judging " << guard.judging()
+            << std::endl;
+  for (unsigned int i = 0; i < 5; ++i)
+    report("loose bed, 60 N, nothing carried, KE/IE 200 %",
+           guard.add(station(60., 0., 2., 1.)));
+  std::cout << "judging " << guard.judging() << std::endl;
+  report("first station at the floor, KE/IE 20 %",
+         guard.add(station(100., 90., 0.2, 1.)));
+  std::cout << "judging " << guard.judging() << std::endl;
+  report("loaded, KE/IE 30 %", guard.add(station(200., 190., 0.3, 1.)));
+  for (unsigned int i = 0; i < 10; ++i)
+    guard.add(station(1000., 1000., 0.01, 1.));
+  report("one station 70 % apart after ten balanced ones",
+         guard.add(station(1000., 300., 0.01, 1.)));
+  std::string breach;
+  for (unsigned int i = 0; i < 10 && breach.empty(); ++i)
+    breach = guard.add(station(1000., 300., 0.01, 1.));
+  report("ten stations 70 % apart", breach);
+
+  QuasiStaticGuard unloading(limits);
+  for (unsigned int i = 0; i < 10; ++i)
+    unloading.add(station(1000., 1000., 0.01, 1.));
+  for (unsigned int i = 0; i < 10; ++i)
+    unloading.add(station(1., 0., 0.01, 1.));
+  std::cout << "unloaded to 1 N, nothing carried: judging "
+            << unloading.judging() << std::endl;
+  report("unloaded, mean force below the floor",
+         unloading.add(station(1., 0., 0.01, 1.)));
+  report("unloaded, KE/IE 50 %", unloading.add(station(1., 0., 0.5, 1.)));
+}
