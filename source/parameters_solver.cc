@@ -232,19 +232,20 @@ namespace densify
         "Maximum kinetic energy ratio",
         explicit_dynamics.max_kinetic_ratio,
         "The quasi-static guard of runs whose mass scaling sets the step "
-        "(Mass scaling = selective or uniform): at each station the kinetic "
-        "energy may be at most this fraction of the internal work "
-        "(dimensionless, 0 <= r <= 10; 0: not checked). A run that leaves "
-        "it is not quasi-static: it stops with exit code 1, names the "
-        "entry to raise (Number of steps) and keeps a checkpoint of the "
-        "last station within the limits. Checked from the first station "
-        "whose upper punch force reaches the force that brings the "
+        "(Mass scaling = selective or uniform). It judges from the first "
+        "station whose upper punch force reaches the force that brings the "
         "smallest, weakest particle's cross-section to its initial yield "
         "stress (pi D^2 sigma_y / 4; for laws that do not yield, the stress "
         "of an elastic strain of 1e-3, E / 1000): before it a loose bed "
-        "rearranges "
-        "without a compact that carries the punch. Mass scaling = none (high-speed compaction, where inertia is "
-        "part of the answer) is not checked.",
+        "rearranges without a compact that carries the punch. From there "
+        "on, at each station, the kinetic energy gained since that first "
+        "station may be at most this fraction of the internal work done "
+        "since (dimensionless, 0 <= r <= 10; 0: not checked): what the "
+        "rearrangement left moving is not counted. A run that leaves it is "
+        "not quasi-static: it stops with exit code 1, names the entry to "
+        "raise (Number of steps) and keeps a checkpoint of the last station "
+        "within the limits. Mass scaling = none (high-speed compaction, "
+        "where inertia is part of the answer) is not checked.",
         Patterns::Double(0., 10.));
       prm.add_parameter(
         "Maximum force imbalance",
@@ -256,9 +257,10 @@ namespace densify
         "packing cancel and a lasting imbalance does not); dimensionless, 0 "
         "<= r <= 10; 0: not checked. A quasi-static compact carries the "
         "upper punch's load to the lower punch and the die wall. Same stop "
-        "and scope as Maximum kinetic energy ratio, and checked while the "
-        "mean upper punch force is at least the force from which that one "
-        "is checked.",
+        "and scope as Maximum kinetic energy ratio; the mean is over the "
+        "stations since the guard judges, and stations whose upper punch "
+        "force is below the force from which it judges (an unloading) are "
+        "not checked.",
         Patterns::Double(0., 10.));
     }
     prm.leave_subsection();

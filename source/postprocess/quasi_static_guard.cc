@@ -36,17 +36,31 @@ namespace densify
                         s.lower_punch_force + s.die_wall_force);
     if (forces.size() > window)
       forces.pop_front();
-    loaded = loaded || std::abs(s.upper_punch_force) >= limits.load_floor;
+    const bool at_floor = std::abs(s.upper_punch_force) >= limits.load_floor;
+    if (at_floor && !loaded)
+      {
+        // the first station at the load floor: the energies count from here
+        loaded      = true;
+        loaded_step = s.step;
+        forces.erase(forces.begin(), forces.end() - 1);
+        loaded_energies = {s.kinetic_energy, s.internal_work};
+      }
     if (!loaded)
       return "";
 
     std::ostringstream text;
     text << std::setprecision(3);
-    const double ratio = s.kinetic_energy / s.internal_work;
-    if (limits.kinetic_ratio > 0. && !(ratio <= limits.kinetic_ratio))
-      text << "KE/IE " << 100. * ratio
-           << " % above Explicit/Maximum kinetic energy ratio = "
+    const double gained = s.kinetic_energy - loaded_energies.first;
+    const double work   = s.internal_work - loaded_energies.second;
+    if (limits.kinetic_ratio > 0. && work > 0. &&
+        !(gained <= limits.kinetic_ratio * work))
+      text << "kinetic energy gained since step " << loaded_step << " "
+           << 100. * gained / work
+           << " % of the internal work done since, above Explicit/Maximum "
+              "kinetic energy ratio = "
            << 100. * limits.kinetic_ratio << " %";
+    if (!at_floor)
+      return text.str();
 
     double upper = 0., carried = 0.;
     for (const auto &[u, c] : forces)
@@ -57,8 +71,7 @@ namespace densify
     upper /= forces.size();
     carried /= forces.size();
     const double imbalance = std::abs(upper - carried) / std::abs(upper);
-    if (limits.force_imbalance > 0. && std::abs(upper) >= limits.load_floor &&
-        !(imbalance <= limits.force_imbalance))
+    if (limits.force_imbalance > 0. && !(imbalance <= limits.force_imbalance))
       text << (text.tellp() > 0 ? " and " : "") << "F_upper " << upper
            << " N against F_lower + F_die " << carried
            << " N (mean of the last " << forces.size()

@@ -14,7 +14,8 @@ namespace densify
   /// force imbalance (0: that limit is not checked).
   struct QuasiStaticLimits
   {
-    /// Largest kinetic energy as a fraction of the internal work.
+    /// Largest kinetic energy gained since the first station at load_floor
+    /// as a fraction of the internal work done since.
     double kinetic_ratio = 0.;
     /// Largest mean of F_upper - F_lower - F_die over the last
     /// QuasiStaticGuard::window stations as a fraction of their mean F_upper.
@@ -30,14 +31,19 @@ namespace densify
   };
 
   /**
-   * Checks the stations of an explicit run against QuasiStaticLimits. The
-   * kinetic energy is compared at each station; the force balance as a mean
-   * over the last stations, so that the vibrations of a loose packing,
+   * Checks the stations of an explicit run against QuasiStaticLimits, from
+   * the first station whose upper punch force reaches
+   * QuasiStaticLimits::load_floor on. The kinetic energy gained since that
+   * station is compared with the internal work done since, at each station:
+   * what a loose bed's rearrangement left moving before it (the impacts of
+   * rattling particles, whose kinetic energy and impact work grow together
+   * whatever the punch speed) is not the compaction's inertia, and a
+   * compaction that stays quasi-static gains little. The force balance is
+   * compared as a mean over the last stations while the station's upper
+   * punch force is at the floor, so that the vibrations of a loose packing,
    * which move the lower punch force above and below the upper one from
    * station to station, cancel, and a lasting imbalance (a compact that
-   * accelerates, or a lower punch that carries nothing) does not. Both
-   * are checked from the first station whose upper punch force reaches
-   * QuasiStaticLimits::load_floor on.
+   * accelerates, or a lower punch that carries nothing) does not.
    */
   class QuasiStaticGuard
   {
@@ -60,8 +66,8 @@ namespace densify
 
     /**
      * Add station @p s; returns what it breaks, as the start of an error
-     * line ("KE/IE 55 % above Explicit/Maximum kinetic energy ratio =
-     * 25 %"), or an empty string when it keeps the limits.
+     * line ("kinetic energy gained since step 3 55 % of the internal work
+     * done since, above Explicit/Maximum kinetic energy ratio = 25 %"), or an empty string when it keeps the limits.
      */
     std::string
     add(const StepStatistics &s);
@@ -72,5 +78,9 @@ namespace densify
     std::deque<std::pair<double, double>> forces;
     /// See judging().
     bool loaded = false;
+    /// The first station at the load floor, and its kinetic energy and
+    /// internal work (mJ).
+    unsigned int              loaded_step = 0;
+    std::pair<double, double> loaded_energies;
   };
 } // namespace densify
