@@ -352,21 +352,25 @@ namespace densify
       return limits;
     limits.kinetic_ratio   = prm.explicit_dynamics.max_kinetic_ratio;
     limits.force_imbalance = prm.explicit_dynamics.max_force_imbalance;
-    // the guard judges from the force that brings the cross-section of the
-    // smallest, weakest particle to its initial yield stress (for laws that
-    // do not yield, to the stress of an elastic strain of 0.1 %): below it
-    // a loose bed rearranges, dynamically under mass scaling, before any
-    // compact carries the punch
-    limits.load_floor = std::numeric_limits<double>::infinity();
+    // the guard judges from the force that gives the compact a mean axial
+    // stress of a tenth of the weakest particle's initial yield stress (for
+    // laws that do not yield, the stress of an elastic strain of 1e-3) over
+    // the die's bore (without a die, over the particles' cross-sections):
+    // below it a loose bed rearranges, and mass scaling makes that inertial
+    // (the inertial number grows as the square root of the scaled density
+    // over the pressure)
+    double stress = std::numeric_limits<double>::infinity(), area = 0.;
     for (unsigned int p = 0; p < particles.size(); ++p)
       {
         const Material &material = *particle_material[p];
-        const double    stress   = std::min(material.initial_yield_stress(),
-                                       1e-3 * material.youngs_modulus());
-        const double    D        = particles[p].diameter;
-        limits.load_floor =
-          std::min(limits.load_floor, stress * numbers::PI * D * D / 4.);
+        stress                   = std::min({stress,
+                                             material.initial_yield_stress(),
+                                             1e-3 * material.youngs_modulus()});
+        area += numbers::PI * std::pow(particles[p].diameter / 2., 2);
       }
+    if (effects.has_tool(ToolKind::die_wall))
+      area = numbers::PI * std::pow(prm.tools.die_diameter / 2., 2);
+    limits.load_floor = 0.1 * stress * area;
     return limits;
   }
 

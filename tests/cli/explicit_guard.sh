@@ -3,9 +3,9 @@
 # runs whose mass scaling sets the step:
 # - prm/default.prm in 10 explicit steps (the smallest accepted) ended with
 #   exit 0, F_lower 0 N under F_upper 481 N and KE/IE 55-300 %: now exit 1 at
-#   step 3, the first station whose upper punch force (222 N) reaches the
-#   guard's load floor (the force that brings a 2.5 mm sphere's
-#   cross-section to the stress of an elastic strain of 1e-3, 212 N), by
+#   step 4, the first station whose upper punch force (354 N) reaches the
+#   guard's load floor (a mean stress of a tenth of E / 1000, the stress of
+#   an elastic strain of 1e-3, over the 10 mm die's bore: 339 N), by
 #   the force balance (nothing reaches the lower punch), one error line
 #   naming Explicit/Number of steps, no checkpoint (no station was judged
 #   within the limits), and the penetration warning of implicit runs
@@ -31,7 +31,7 @@ expect_error "default.prm in 10 explicit steps" 1 "raise Explicit/Number of step
   --set "Explicit/Number of steps=10" --set "Output/Directory=def10"
 out=$("$DENSIFY" "$SOURCE_DIR/prm/default.prm" --set "Solver/Method=explicit" \
   --set "Explicit/Number of steps=10" --set "Output/Directory=def10" 2>&1)
-for pattern in "no longer quasi-static at step 3" "against F_lower + F_die 0 N" "no checkpoint is written" \
+for pattern in "no longer quasi-static at step 4" "against F_lower + F_die 0 N" "no checkpoint is written" \
     "warning: penetration .* mm above Contact/Gap tolerance"; do
   printf '%s\n' "$out" | grep -q -- "$pattern" ||
     { echo "FAIL: default.prm, 10 steps: no '$pattern' in"; printf '%s\n' "$out"; fails=$((fails + 1)); }

@@ -22,10 +22,10 @@ namespace densify
     double force_imbalance = 0.;
     /**
      * Upper punch force (N) from which the guard judges: the force that
-     * brings the smallest, weakest particle's cross-section to its initial
-     * yield stress. Below it a loose bed rearranges, which mass scaling
-     * makes dynamic without a compact that carries the punch; the limits
-     * speak of the compaction, not of the rearrangement.
+     * gives the compact a mean axial stress of a tenth of the weakest
+     * particle's initial yield stress. Below it a loose bed rearranges,
+     * which mass scaling makes inertial without a compact that carries the
+     * punch; the limits speak of the compaction, not of the rearrangement.
      */
     double load_floor = 0.;
   };
@@ -67,7 +67,8 @@ namespace densify
     /**
      * Add station @p s; returns what it breaks, as the start of an error
      * line ("kinetic energy gained since step 3 55 % of the internal work
-     * done since, above Explicit/Maximum kinetic energy ratio = 25 %"), or an empty string when it keeps the limits.
+     * done since, above Explicit/Maximum kinetic energy ratio = 25 %"), or an
+     * empty string when it keeps the limits.
      */
     std::string
     add(const StepStatistics &s);
