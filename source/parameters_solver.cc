@@ -258,10 +258,9 @@ namespace densify
         "packing cancel and a lasting imbalance does not); dimensionless, 0 "
         "<= r <= 10; 0: not checked. A quasi-static compact carries the "
         "upper punch's load to the lower punch and the die wall. Same stop "
-        "and scope as Maximum kinetic energy ratio; the mean is over the "
-        "stations since the guard judges, and stations whose upper punch "
-        "force is below the force from which it judges (an unloading) are "
-        "not checked.",
+        "and scope as Maximum kinetic energy ratio; stations whose upper "
+        "punch force is below the force from which it judges (an unloading) "
+        "are not checked.",
         Patterns::Double(0., 10.));
     }
     prm.leave_subsection();

@@ -40,9 +40,8 @@ namespace densify
     if (at_floor && !loaded)
       {
         // the first station at the load floor: the energies count from here
-        loaded      = true;
-        loaded_step = s.step;
-        forces.erase(forces.begin(), forces.end() - 1);
+        loaded          = true;
+        loaded_step     = s.step;
         loaded_energies = {s.kinetic_energy, s.internal_work};
       }
     if (!loaded)
