@@ -15,20 +15,11 @@
 using namespace densify;
 
 using densify::testing::all_passed;
+using densify::testing::write_file;
 using densify::testing::yes;
 
 namespace
 {
-
-
-
-  /// Write @p text to the file @p name in the working directory.
-  void
-  write(const std::string &name, const std::string &text)
-  {
-    std::ofstream out(name);
-    out << text;
-  }
 
 
 
@@ -121,31 +112,31 @@ int
 main()
 {
   // Reading.
-  write("good.csv",
-        "# particles of the test\n"
-        "x, y, z, diameter, material\n"
-        "0,0,1.25,2.5,Sn\n"
-        "\n"
-        "   # an indented comment\n"
-        "3.0, 0, 1.25, 2.5\n"
-        "0,0,3.75,2.5e0,Fe\r\n"
-        "-3,0,1.25,2.0,\n"
-        "  1.5e-1 , -2 , 4 , 1 , Sn  \n");
+  write_file("good.csv",
+             "# particles of the test\n"
+             "x, y, z, diameter, material\n"
+             "0,0,1.25,2.5,Sn\n"
+             "\n"
+             "   # an indented comment\n"
+             "3.0, 0, 1.25, 2.5\n"
+             "0,0,3.75,2.5e0,Fe\r\n"
+             "-3,0,1.25,2.0,\n"
+             "  1.5e-1 , -2 , 4 , 1 , Sn  \n");
   read("good.csv", false);
-  write("only-comments.csv", "# nothing here\n\n");
+  write_file("only-comments.csv", "# nothing here\n\n");
   read("only-comments.csv", false);
   read("no-such-file.csv", true);
-  write("bad-fields.csv", "x,y,z,d\n0,0,1.25,2.5\n1,2,3\n");
+  write_file("bad-fields.csv", "x,y,z,d\n0,0,1.25,2.5\n1,2,3\n");
   read("bad-fields.csv", true);
-  write("six-fields.csv", "0,0,1.25,2.5,Sn,extra\n");
+  write_file("six-fields.csv", "0,0,1.25,2.5,Sn,extra\n");
   read("six-fields.csv", true);
-  write("non-numeric.csv", "# comment\nx,y,z,d\n1,2,abc,2.5\n");
+  write_file("non-numeric.csv", "# comment\nx,y,z,d\n1,2,abc,2.5\n");
   read("non-numeric.csv", true);
-  write("empty-field.csv", "1,,3,2.5\n");
+  write_file("empty-field.csv", "1,,3,2.5\n");
   read("empty-field.csv", true);
-  write("second-header.csv", "x,y,z,d\n0,0,1.25,2.5\nx,y,z,d\n");
+  write_file("second-header.csv", "x,y,z,d\n0,0,1.25,2.5\nx,y,z,d\n");
   read("second-header.csv", true);
-  write("trailing-garbage.csv", "0,0,1.25,2.5mm\n");
+  write_file("trailing-garbage.csv", "0,0,1.25,2.5mm\n");
   read("trailing-garbage.csv", true);
 
   // Checking: a valid set in a die of radius 10 between z = 0 and z = 10.

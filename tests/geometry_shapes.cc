@@ -18,17 +18,11 @@ using namespace densify;
 
 using densify::testing::all_passed;
 using densify::testing::source_dir;
+using densify::testing::write_file;
 using densify::testing::yes;
 
 namespace
 {
-  /// Write @p text to the file @p name in the working directory.
-  void
-  write(const std::string &name, const std::string &text)
-  {
-    std::ofstream out(name);
-    out << text;
-  }
 
 
 
@@ -77,10 +71,11 @@ main()
 
   // an ellipsoid of diameters 3, 2, 1.5 mm turned by 90 degrees about z:
   // its body x axis (the longest) along the global y axis
-  write("ellipsoid.csv",
-        "x,y,z,diameter,material,shape,diameter_y,diameter_z,angle_x,angle_y,"
-        "angle_z\n"
-        "1,2,3,3,Sn,ellipsoid,2,1.5,0,0,90\n");
+  write_file(
+    "ellipsoid.csv",
+    "x,y,z,diameter,material,shape,diameter_y,diameter_z,angle_x,angle_y,"
+    "angle_z\n"
+    "1,2,3,3,Sn,ellipsoid,2,1.5,0,0,90\n");
   const std::vector<Particle> ellipsoid =
     read_particle_csv("ellipsoid.csv", "Cu");
   const Particle &e = ellipsoid.at(0);
@@ -140,8 +135,8 @@ main()
             << yes(has_top && has_bottom) << ")" << std::endl;
 
   // a 2 mm cube from an STL file, its centroid placed at (5, 0, 1)
-  write("cube.csv",
-        "5,0,1,,Fe," + source_dir() + "/tests/data/cube.stl,0,0,0\n");
+  write_file("cube.csv",
+             "5,0,1,,Fe," + source_dir() + "/tests/data/cube.stl,0,0,0\n");
   const Particle cube = read_particle_csv("cube.csv", "Fe").at(0);
   std::cout << "cube read: material " << cube.material << ", "
             << cube.surface->triangles.size()
@@ -168,8 +163,8 @@ main()
                            std::istreambuf_iterator<char>());
     // drop the last facet
     const std::size_t last = text.rfind("  facet");
-    write("open.stl", text.substr(0, last) + "endsolid cube\n");
-    write("open.csv", "0,0,0,,Fe,open.stl\n");
+    write_file("open.stl", text.substr(0, last) + "endsolid cube\n");
+    write_file("open.csv", "0,0,0,,Fe,open.stl\n");
     try
       {
         read_particle_csv("open.csv", "Fe");
@@ -188,7 +183,7 @@ main()
                                  "0,0,0,2,Sn,open.stl\n",
                                  "0,0,0,2,Sn,ellipsoid,1,x\n"})
     {
-      write("bad.csv", line);
+      write_file("bad.csv", line);
       try
         {
           read_particle_csv("bad.csv", "Fe");
@@ -201,7 +196,8 @@ main()
     }
 
   // random orientations: reproducible from the seed, another seed others
-  write("random.csv", "0,0,0,3,Sn,ellipsoid,2,1\n5,0,0,3,Sn,ellipsoid,2,1\n");
+  write_file("random.csv",
+             "0,0,0,3,Sn,ellipsoid,2,1\n5,0,0,3,Sn,ellipsoid,2,1\n");
   const auto r1 = read_particle_csv("random.csv", "Sn", 7);
   const auto r2 = read_particle_csv("random.csv", "Sn", 7);
   const auto r3 = read_particle_csv("random.csv", "Sn", 8);

@@ -27,17 +27,11 @@
 
 using namespace densify;
 
+using densify::testing::write_file;
 using densify::testing::yes;
 
 namespace
 {
-  /// Write @p text to the file @p name in the working directory.
-  void
-  write(const std::string &name, const std::string &text)
-  {
-    std::ofstream out(name);
-    out << text;
-  }
 
 
 
@@ -191,60 +185,65 @@ main()
   // columns by name; the last snapshot
   const std::string rows = "1 1 0.001 0 0.00125 0.00125\n"
                            "2 2 -0.0015 0 0.001 0.001\n";
-  write("two.liggghts",
-        dump("id type x y z radius", "1 1 0.002 0 0.00125 0.00125\n") +
-          dump("id type x y z radius", rows));
+  write_file("two.liggghts",
+             dump("id type x y z radius", "1 1 0.002 0 0.00125 0.00125\n") +
+               dump("id type x y z radius", rows));
   read("two.liggghts", "Sn,Cu", false);
-  write("columns.liggghts",
-        dump("zu diameter yu xu vx",
-             "0.00125 0.0025 0 0.001 7\n0.001 0.002 0 -0.0015 8\n"));
+  write_file("columns.liggghts",
+             dump("zu diameter yu xu vx",
+                  "0.00125 0.0025 0 0.001 7\n0.001 0.002 0 -0.0015 8\n"));
   read("columns.liggghts", "Fe", false);
-  write("ids.liggghts",
-        dump("type x y z radius id",
-             "2 -0.0015 0 0.001 0.001 9\n1 0.001 0 0.00125 0.00125 4\n"));
+  write_file("ids.liggghts",
+             dump("type x y z radius id",
+                  "2 -0.0015 0 0.001 0.001 9\n1 0.001 0 0.00125 0.00125 4\n"));
   read("ids.liggghts", "Sn, Cu", false);
 
   // malformed dumps: one line each
-  write("empty.liggghts", dump("id type x y z radius", "", 0));
+  write_file("empty.liggghts", dump("id type x y z radius", "", 0));
   read("empty.liggghts", "Sn", true);
-  write("no-atoms-item.liggghts",
-        "ITEM: TIMESTEP\n5\nITEM: NUMBER OF ATOMS\n2\n");
+  write_file("no-atoms-item.liggghts",
+             "ITEM: TIMESTEP\n5\nITEM: NUMBER OF ATOMS\n2\n");
   read("no-atoms-item.liggghts", "Sn", true);
-  write("no-count.liggghts",
-        "ITEM: TIMESTEP\n5\nITEM: ATOMS id type x y z radius\n1 1 0 0 1 1\n");
+  write_file(
+    "no-count.liggghts",
+    "ITEM: TIMESTEP\n5\nITEM: ATOMS id type x y z radius\n1 1 0 0 1 1\n");
   read("no-count.liggghts", "Sn", true);
-  write("no-radius.liggghts", dump("id type x y z", "1 1 0 0 0.001\n"));
+  write_file("no-radius.liggghts", dump("id type x y z", "1 1 0 0 0.001\n"));
   read("no-radius.liggghts", "Sn", true);
-  write("no-z.liggghts", dump("id type x y radius", "1 1 0 0 0.001\n"));
+  write_file("no-z.liggghts", dump("id type x y radius", "1 1 0 0 0.001\n"));
   read("no-z.liggghts", "Sn", true);
-  write("scaled.liggghts",
-        dump("id type xs ys zs radius", "1 1 0.5 0.5 0.1 0.001\n"));
+  write_file("scaled.liggghts",
+             dump("id type xs ys zs radius", "1 1 0.5 0.5 0.1 0.001\n"));
   read("scaled.liggghts", "Sn", true);
-  write("zero-radius.liggghts",
-        dump("id type x y z radius", "1 1 0 0 0.001 0.001\n2 1 0 0 0.003 0\n"));
+  write_file("zero-radius.liggghts",
+             dump("id type x y z radius",
+                  "1 1 0 0 0.001 0.001\n2 1 0 0 0.003 0\n"));
   read("zero-radius.liggghts", "Sn", true);
-  write("negative-radius.liggghts",
-        dump("id type x y z radius", "1 1 0 0 0.001 -1e-3\n"));
+  write_file("negative-radius.liggghts",
+             dump("id type x y z radius", "1 1 0 0 0.001 -1e-3\n"));
   read("negative-radius.liggghts", "Sn", true);
-  write("cut-short.liggghts",
-        dump("id type x y z radius", "1 1 0 0 0.001 0.001\n", 3));
+  write_file("cut-short.liggghts",
+             dump("id type x y z radius", "1 1 0 0 0.001 0.001\n", 3));
   read("cut-short.liggghts", "Sn", true);
-  write("short-row.liggghts",
-        dump("id type x y z radius", "1 1 0 0 0.001 0.001\n2 1 0 0.003\n"));
+  write_file("short-row.liggghts",
+             dump("id type x y z radius",
+                  "1 1 0 0 0.001 0.001\n2 1 0 0.003\n"));
   read("short-row.liggghts", "Sn", true);
-  write("not-a-number.liggghts",
-        dump("id type x y z radius", "1 1 0 0 abc 0.001\n"));
+  write_file("not-a-number.liggghts",
+             dump("id type x y z radius", "1 1 0 0 abc 0.001\n"));
   read("not-a-number.liggghts", "Sn", true);
-  write("bad-type.liggghts", dump("id type x y z radius", "1 0 0 0 1 1\n"));
+  write_file("bad-type.liggghts",
+             dump("id type x y z radius", "1 0 0 0 1 1\n"));
   read("bad-type.liggghts", "Sn", true);
-  write("third-type.liggghts",
-        dump("id type x y z radius", "1 1 0 0 0.001 0.001\n2 3 0 0 3 1\n"));
+  write_file("third-type.liggghts",
+             dump("id type x y z radius",
+                  "1 1 0 0 0.001 0.001\n2 3 0 0 3 1\n"));
   read("third-type.liggghts", "Sn, Cu", true);
-  write("twice.liggghts",
-        dump("id type x y z radius",
-             "1 1 0 0 0.001 0.001\n1 1 0.003 0 0.001 0.001\n"));
+  write_file("twice.liggghts",
+             dump("id type x y z radius",
+                  "1 1 0 0 0.001 0.001\n1 1 0.003 0 0.001 0.001\n"));
   read("twice.liggghts", "Sn", true);
-  write("no-timestep.liggghts", "ITEM: UNITS\nsi\n");
+  write_file("no-timestep.liggghts", "ITEM: UNITS\nsi\n");
   read("no-timestep.liggghts", "Sn", true);
 
   // overlaps beyond a DEM contact's: wrong units, origin or die

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,14 @@ namespace densify
     {
       return yes(std::abs(value - reference) <=
                  tolerance * std::abs(reference));
+    }
+
+    /// Write @p text to the file @p name in the working directory.
+    inline void
+    write_file(const std::string &name, const std::string &text)
+    {
+      std::ofstream out(name);
+      out << text;
     }
 
     /// The source directory (from the DENSIFY_SOURCE_DIR environment variable).
