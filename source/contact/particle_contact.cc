@@ -119,6 +119,7 @@ namespace densify
     committed_traction.assign(friction.mu > 0 ? n_points : 0, Tensor<1, 3>());
     accumulated_slip.assign(friction.mu > 0 ? n_points : 0, 0.);
     assigned.assign(n_points, numbers::invalid_unsigned_int);
+    near.valid = false;
   }
 
 
@@ -254,6 +255,8 @@ namespace densify
         std::sort(list->begin(), list->end());
         list->erase(std::unique(list->begin(), list->end()), list->end());
       }
+    near.valid         = false;
+    near.reach         = margin;
     const bool covered = std::includes(pattern_couplings.begin(),
                                        pattern_couplings.end(),
                                        couplings.begin(),
@@ -396,6 +399,12 @@ namespace densify
                                           update_values | update_JxW_values);
     const std::vector<Point<3>> x_now =
       plain ? current_vertices(*out.values) : current_vertices(solution);
+    // the explicit pass searches each point's near list (the same facet as
+    // all candidates give); a pass that assigns facets searches them all
+    const bool use_lists =
+      plain && out.new_assignment == nullptr && near.enabled;
+    if (use_lists)
+      update_near_lists(x_now, *out.values);
     // the scalar shape functions of the base element behind each vector
     // one (the same values as fe.shape_value(), a third of the calls)
     std::vector<unsigned int> base_index(n_dofs);
@@ -490,11 +499,17 @@ namespace densify
                 else
                   {
                     // the closest candidate facet (its normal once found)
-                    for (unsigned int c = begin; c < end; ++c)
+                    const unsigned int *first =
+                      use_lists ? near.facets.data() + near.start[idx] :
+                                  candidates.data() + begin;
+                    const unsigned int *last =
+                      use_lists ? near.facets.data() + near.start[idx + 1] :
+                                  candidates.data() + end;
+                    for (const unsigned int *c = first; c != last; ++c)
                       {
                         double           d2;
                         const Projection pr =
-                          project(x_s, candidates[c], x_now, 0., d2, false);
+                          project(x_s, *c, x_now, 0., d2, false);
                         if (d2 < best_distance)
                           {
                             best_distance = d2;
@@ -824,6 +839,64 @@ namespace densify
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
+  }
+
+
+
+  void
+  ParticleContact::update_near_lists(const std::vector<Point<3>> &x_now,
+                                     const AllValues             &values) const
+  {
+    // still valid while 4 max |x - x_ref| < reach (with a tenth to spare
+    // against round-off in the distances)
+    if (near.valid)
+      {
+        double moved2 = 0.;
+        for (unsigned int j = 0; j < surface_vertices.size(); ++j)
+          moved2 =
+            std::max(moved2,
+                     (x_now[surface_vertices[j].index] - near.reference[j])
+                       .norm_square());
+        if (16. * moved2 < 0.81 * near.reach * near.reach)
+          return;
+      }
+    const unsigned int        n_q = face_quadrature.size();
+    std::vector<Tensor<1, 3>> u_values(n_q);
+    std::vector<double>       distance;
+    near.start.assign(1, 0);
+    near.facets.clear();
+    for (unsigned int k = 0; k < slave_faces.size(); ++k)
+      {
+        const unsigned int begin = candidate_start[k],
+                           end   = candidate_start[k + 1];
+        if (begin < end)
+          tables.values(k, values, u_values);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            if (begin < end)
+              {
+                const Point<3> x_s = tables.point(k, q) + u_values[q];
+                distance.resize(end - begin);
+                double closest = std::numeric_limits<double>::max();
+                for (unsigned int c = begin; c < end; ++c)
+                  {
+                    double d2;
+                    project(x_s, candidates[c], x_now, 0., d2, false);
+                    distance[c - begin] = std::sqrt(d2);
+                    closest = std::min(closest, distance[c - begin]);
+                  }
+                for (unsigned int c = begin; c < end; ++c)
+                  if (distance[c - begin] <= closest + near.reach)
+                    near.facets.push_back(candidates[c]);
+              }
+            near.start.push_back(near.facets.size());
+          }
+      }
+    near.reference.resize(surface_vertices.size());
+    for (unsigned int j = 0; j < surface_vertices.size(); ++j)
+      near.reference[j] = x_now[surface_vertices[j].index];
+    near.valid = true;
+    ++near.builds;
   }
 
 

@@ -187,6 +187,25 @@ namespace densify
       return "particle contact";
     }
 
+    /// With @p on false the explicit pass searches every candidate facet at
+    /// every evaluation, as a pass that assigns facets does (the reference
+    /// the near lists are tested against; on by default).
+    void
+    set_near_lists(const bool on)
+    {
+      near.enabled = on;
+      near.valid   = false;
+    }
+
+    /// How many times the explicit pass has built its near lists (the
+    /// closest facet of a slave point is searched among all candidates only
+    /// then; NearLists).
+    unsigned int
+    near_list_builds() const
+    {
+      return near.builds;
+    }
+
     /// Multipliers and friction history, for roll-back and checkpoints.
     using State = ContactState;
 
@@ -322,5 +341,41 @@ namespace densify
     /// The master facet assigned to each slave point
     /// (numbers::invalid_unsigned_int: the closest candidate).
     std::vector<unsigned int> assigned;
+
+    /**
+     * Near lists of the explicit pass (Verlet lists): per slave point the
+     * candidate facets whose distance was within #reach of the closest
+     * one's at the last rebuild (CSR by slave point, in the candidates'
+     * order), and the surface vertices' positions then. A point-triangle
+     * distance moves by at most the point's displacement plus the largest
+     * of the triangle's vertices', so while no surface vertex has moved by
+     * more than a quarter of the reach, no facet outside a point's list can
+     * be closer than the list's closest: the pass finds the same facet as a
+     * search over all candidates, to the last bit.
+     */
+    struct NearLists
+    {
+      /// Per slave point, its range in facets (size: points + 1).
+      std::vector<unsigned int> start;
+      /// The listed facets.
+      std::vector<unsigned int> facets;
+      /// Positions of surface_vertices at the rebuild.
+      std::vector<Point<3>> reference;
+      /// The lists' reach (mm): the search margin of update_search().
+      double reach = 0.;
+      /// False until built, and after each new candidate search.
+      bool valid = false;
+      /// Builds so far.
+      unsigned int builds = 0;
+      /// False: every candidate searched at every evaluation.
+      bool enabled = true;
+    };
+    mutable NearLists near;
+
+    /// Rebuild #near at the current vertex positions @p x_now (the slave
+    /// points' displacements from @p values) unless it still holds.
+    void
+    update_near_lists(const std::vector<Point<3>> &x_now,
+                      const AllValues             &values) const;
   };
 } // namespace densify

@@ -1,0 +1,133 @@
+// The explicit pass of particle contact with its near lists (Verlet lists,
+// ParticleContact::NearLists) against the search over all candidate facets.
+// Two spheres (P1, h = 0.3) stacked on the z axis overlap by 0.15 mm, and
+// the upper one slides by 0.12 mm in x and 0.03 mm in y in 600 passes, so
+// that slave points cross master facet edges between two builds of the
+// lists; the candidates come from one search with a 0.05 mm margin, so the
+// lists are rebuilt every 0.011 mm of motion. Each pass is made twice on
+// plain arrays, the explicit method's path: with the near lists, and with
+// them off (ParticleContact::set_near_lists), which searches every candidate
+// at every evaluation. Checked: the contact forces are the same to the last
+// bit at every pass (the lists find the same facets; a point whose closest
+// point lies on an edge shared by two facets is where a different order of
+// operations would pick the other), and the lists were built far fewer
+// times than there were passes.
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/mapping_fe.h>
+
+#include <densify/assembly/all_values.h>
+#include <densify/contact/particle_contact.h>
+#include <densify/simulator.h>
+
+#include "test_utilities.h"
+
+#include <iomanip>
+#include <iostream>
+
+namespace
+{
+  using namespace densify;
+
+  /// The displacement that moves particle 1 by @p shift and deforms both
+  /// particles by a small smooth field (fully ghosted).
+  TrilinosWrappers::MPI::Vector
+  displacement(const DoFHandler<3> &dof_handler, const Tensor<1, 3> &shift)
+  {
+    TrilinosWrappers::MPI::Vector owned(dof_handler.locally_owned_dofs(),
+                                        MPI_COMM_WORLD);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const Point<3> &x = cell->vertex(v);
+            for (unsigned int d = 0; d < 3; ++d)
+              owned(cell->vertex_dof_index(v, d)) =
+                (cell->material_id() == 1 ? shift[d] : 0.) +
+                1e-3 * std::sin(2. * x[d] + x[(d + 1) % 3]);
+          }
+    owned.compress(VectorOperation::insert);
+    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
+                                      complete_index_set(dof_handler.n_dofs()),
+                                      MPI_COMM_WORLD);
+    all = owned;
+    return all;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  Parameters                       parameters;
+  ParameterHandler                 prm;
+  testing::read_scene(parameters,
+                      prm,
+                      "hertz.prm",
+                      testing::two_stacked_spheres(1));
+  Simulator simulator(parameters, MPI_COMM_WORLD, false);
+  simulator.setup();
+  const DoFHandler<3> &dof_handler = simulator.get_dof_handler();
+  const MappingFE<3>   mapping(FE_SimplexP<3>(1));
+
+  // frictionless, contact at the facet corners as for P1 in densify
+  ParticleContact with_lists, every_candidate;
+  every_candidate.set_near_lists(false);
+  const double overlap = 0.15;
+  for (ParticleContact *contact : {&with_lists, &every_candidate})
+    {
+      contact->setup(dof_handler,
+                     {1e5, 1e5},
+                     FrictionLaw(),
+                     testing::facet_corners());
+      contact->update_search(displacement(dof_handler,
+                                          Tensor<1, 3>({0., 0., -overlap})),
+                             0.05);
+    }
+
+  const unsigned int n       = 600;
+  double             largest = 0., largest_difference = 0.;
+  for (unsigned int k = 0; k <= n; ++k)
+    {
+      const TrilinosWrappers::MPI::Vector u =
+        displacement(dof_handler,
+                     Tensor<1, 3>({0.12 * k / n, 0.03 * k / n, -overlap}));
+      AllValues values;
+      values.gather(u);
+      const auto forces = [&](ParticleContact &contact) {
+        TrilinosWrappers::MPI::Vector f(dof_handler.locally_owned_dofs(),
+                                        MPI_COMM_WORLD);
+        LocalForces                   local;
+        local.start(f);
+        ContactOutputs plain;
+        plain.values           = &values;
+        plain.committed_values = &values;
+        plain.plain_residual   = &local;
+        contact.assemble_and_commit(mapping, u, f, 0., &plain);
+        local.finish(f);
+        f.compress(VectorOperation::add);
+        return f;
+      };
+      TrilinosWrappers::MPI::Vector       difference = forces(with_lists);
+      const TrilinosWrappers::MPI::Vector reference  = forces(every_candidate);
+      largest = std::max(largest, reference.l2_norm());
+      difference -= reference;
+      largest_difference = std::max(largest_difference, difference.l2_norm());
+    }
+  const unsigned int builds = with_lists.near_list_builds();
+  std::ostringstream out;
+  out << "contact forces over " << n + 1
+      << " passes: with the near lists = searching every candidate, to the "
+         "last bit: "
+      << testing::yes(largest > 0. && largest_difference == 0.) << std::endl
+      << "near lists built fewer than " << (n + 1) / 20
+      << " times and more than once: "
+      << testing::yes(builds > 1 && builds < (n + 1) / 20) << std::endl;
+  std::cerr << "largest force " << largest << " N, largest difference "
+            << largest_difference << " N, lists built " << builds << " times"
+            << std::endl;
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::cout << out.str();
+  return testing::all_passed ? 0 : 1;
+}
