@@ -7,8 +7,9 @@
 # ratios new / old, and the last station line of each build (the same line
 # when the builds compute the same thing).
 # Usage (from the source root):
-#   bash benchmarks/resume_window.sh OLD NEW RUN_DIR SCENE [STATIONS] [RANKS] [RUNS]
-# defaults: 8 stations, 2 ranks, 1 run. Run it alone on the machine.
+#   bash benchmarks/resume_window.sh OLD NEW RUN_DIR SCENE [STATIONS] [RANKS] [RUNS] [OPTIONS...]
+# defaults: 8 stations, 2 ranks, 1 run; OPTIONS (e.g. --set ...) are those
+# the run was started with. Run it alone on the machine.
 # doc/performance.md, "A powder bed of 200 particles".
 set -eu
 [ $# -ge 4 ] || {
@@ -19,6 +20,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 old=$1 new=$2 run=$3 scene=$4 stations=${5:-8} ranks=${6:-2} runs=${7:-1}
+shift $(($# < 7 ? $# : 7))
 for b in "$old" "$new"; do
   [ -x "$b" ] || { echo "resume_window.sh: $b is not an executable"; exit 2; }
 done
@@ -36,7 +38,7 @@ for r in $(seq 1 "$runs"); do
     cp -r "$run/checkpoint" "$run/statistics.csv" "$run/particles.csv" "$d/"
     start=$(date +%s%N)
     "${launch[@]}" "$b" "$scene" --set "Output/Directory=$d" --set Output/Interval=0 \
-      --set "Output/Checkpoint interval=0" --resume --stop-after "$last" > "$d.log" 2>&1 ||
+      --set "Output/Checkpoint interval=0" "$@" --resume --stop-after "$last" > "$d.log" 2>&1 ||
       [ $? -eq 3 ] || { echo "resume_window.sh: $b failed ($d.log)"; exit 1; }
     awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN {printf "%.2f\n", (b - a) / 1e9}' > "$d.wall"
     printf '%s run %s: %s s wall;' "$v" "$r" "$(cat "$d.wall")"
