@@ -12,6 +12,8 @@
 #include <densify/contact/geometric_tangent.h>
 #include <densify/contact/particle_contact.h>
 
+#include <boost/container/small_vector.hpp>
+
 #include <algorithm>
 #include <iterator>
 #include <limits>
@@ -356,6 +358,77 @@ namespace densify
 
 
 
+  ParticleContact::Projection
+  ParticleContact::choose_facet(const Point<3>              &x,
+                                const unsigned int          *first,
+                                const unsigned int          *last,
+                                const std::vector<Point<3>> &vertices,
+                                double &distance_squared) const
+  {
+    // each particle's closest facet (its normal once chosen); a point meets
+    // few particles, so a short list
+    struct Offer
+    {
+      unsigned int particle;
+      double       d2;
+      Projection   projection;
+    };
+    boost::container::small_vector<Offer, 8> offers;
+    for (const unsigned int *c = first; c != last; ++c)
+      {
+        double             d2;
+        const Projection   pr = project(x, *c, vertices, 0., d2, false);
+        const unsigned int p  = facets[*c].particle;
+        auto               o  = offers.begin();
+        while (o != offers.end() && o->particle != p)
+          ++o;
+        if (o == offers.end())
+          offers.push_back({p, d2, pr});
+        else if (d2 < o->d2)
+          {
+            o->d2         = d2;
+            o->projection = pr;
+          }
+      }
+    distance_squared = std::numeric_limits<double>::max();
+    if (offers.empty())
+      return Projection();
+    // the closest offer, unless the point lies behind some particle's
+    // closest facet: then the deepest such (the signed distance to the
+    // facet plus the distance beside it, as the gap of loop())
+    const Offer *chosen = nullptr, *inside = nullptr;
+    double       depth = 0.;
+    for (const Offer &o : offers)
+      {
+        if (chosen == nullptr || o.d2 < chosen->d2)
+          chosen = &o;
+        if (offers.size() > 1)
+          {
+            const Tensor<1, 3> n = outward_normal(o.projection.facet, vertices);
+            const Facet       &f = facets[o.projection.facet];
+            Point<3>           y;
+            for (unsigned int a = 0; a < 3; ++a)
+              y += o.projection.bary[a] * vertices[f.vertex[a]];
+            const Tensor<1, 3> d   = x - y;
+            const double       g_n = d * n;
+            const double       g   = g_n + (d - g_n * n).norm();
+            if (g < depth)
+              {
+                depth  = g;
+                inside = &o;
+              }
+          }
+      }
+    if (inside != nullptr)
+      chosen = inside;
+    Projection best  = chosen->projection;
+    best.normal      = outward_normal(best.facet, vertices);
+    distance_squared = chosen->d2;
+    return best;
+  }
+
+
+
   ParticleContactResult
   ParticleContact::loop(const Mapping<3>                    &mapping,
                         const TrilinosWrappers::MPI::Vector &solution,
@@ -498,34 +571,23 @@ namespace densify
                     project(x_s, kept, x_now, projection_band, best_distance);
                 else
                   {
-                    // the closest candidate facet (its normal once found)
                     const unsigned int *first =
                       use_lists ? near.facets.data() + near.start[idx] :
                                   candidates.data() + begin;
                     const unsigned int *last =
                       use_lists ? near.facets.data() + near.start[idx + 1] :
                                   candidates.data() + end;
-                    for (const unsigned int *c = first; c != last; ++c)
-                      {
-                        double           d2;
-                        const Projection pr =
-                          project(x_s, *c, x_now, 0., d2, false);
-                        if (d2 < best_distance)
-                          {
-                            best_distance = d2;
-                            best          = pr;
-                          }
-                      }
-                    if (best.facet != numbers::invalid_unsigned_int)
-                      best.normal = outward_normal(best.facet, x_now);
+                    best = choose_facet(x_s, first, last, x_now, best_distance);
                     const unsigned int old = assigned[idx];
                     if (out.new_assignment != nullptr &&
                         old != numbers::invalid_unsigned_int &&
-                        old != best.facet)
+                        old != best.facet &&
+                        facets[old].particle == facets[best.facet].particle)
                       {
-                        // hysteresis: keep the old facet while the point
-                        // projects into it enlarged by the band, and no
-                        // other facet is closer by more than that band
+                        // hysteresis: keep the old facet of the same particle
+                        // while the point projects into it enlarged by the
+                        // band, and no other facet is closer by more than
+                        // that band
                         double           d2;
                         const Projection pr =
                           project(x_s, old, x_now, projection_band, d2);
@@ -860,9 +922,10 @@ namespace densify
         if (16. * moved2 < 0.81 * near.reach * near.reach)
           return;
       }
-    const unsigned int        n_q = face_quadrature.size();
-    std::vector<Tensor<1, 3>> u_values(n_q);
-    std::vector<double>       distance;
+    const unsigned int                           n_q = face_quadrature.size();
+    std::vector<Tensor<1, 3>>                    u_values(n_q);
+    std::vector<double>                          distance;
+    std::vector<std::pair<unsigned int, double>> closest;
     near.start.assign(1, 0);
     near.facets.clear();
     for (unsigned int k = 0; k < slave_faces.size(); ++k)
@@ -876,18 +939,33 @@ namespace densify
             if (begin < end)
               {
                 const Point<3> x_s = tables.point(k, q) + u_values[q];
+                // per master particle the facets within the reach of its
+                // closest one (choose_facet() takes each particle's closest)
                 distance.resize(end - begin);
-                double closest = std::numeric_limits<double>::max();
+                closest.clear();
                 for (unsigned int c = begin; c < end; ++c)
                   {
                     double d2;
                     project(x_s, candidates[c], x_now, 0., d2, false);
-                    distance[c - begin] = std::sqrt(d2);
-                    closest = std::min(closest, distance[c - begin]);
+                    distance[c - begin]  = std::sqrt(d2);
+                    const unsigned int p = facets[candidates[c]].particle;
+                    auto               o = closest.begin();
+                    while (o != closest.end() && o->first != p)
+                      ++o;
+                    if (o == closest.end())
+                      closest.emplace_back(p, distance[c - begin]);
+                    else
+                      o->second = std::min(o->second, distance[c - begin]);
                   }
                 for (unsigned int c = begin; c < end; ++c)
-                  if (distance[c - begin] <= closest + near.reach)
-                    near.facets.push_back(candidates[c]);
+                  {
+                    const unsigned int p = facets[candidates[c]].particle;
+                    auto               o = closest.begin();
+                    while (o->first != p)
+                      ++o;
+                    if (distance[c - begin] <= o->second + near.reach)
+                      near.facets.push_back(candidates[c]);
+                  }
               }
             near.start.push_back(near.facets.size());
           }

@@ -299,6 +299,23 @@ namespace densify
     outward_normal(const unsigned int           m,
                    const std::vector<Point<3>> &vertices) const;
 
+    /**
+     * The master facet of the point @p x among the candidate facets
+     * [@p first, @p last), with its normal; @p distance_squared is its
+     * squared distance. Each master particle offers its closest facet; the
+     * closest of these is taken, unless @p x lies behind the closest facet of
+     * some particle (inside it): then the particle it lies deepest in. Where
+     * three particles meet, a point can be inside one particle and yet
+     * closer to the surface of another, outside which it lies; the closest
+     * facet alone would hide that penetration (doc/theory.md section 9).
+     */
+    Projection
+    choose_facet(const Point<3>              &x,
+                 const unsigned int          *first,
+                 const unsigned int          *last,
+                 const std::vector<Point<3>> &vertices,
+                 double                      &distance_squared) const;
+
     /// How far beyond its edges a slave point keeps its master facet, in
     /// barycentric coordinates (update_projections()).
     static constexpr double projection_band = 0.1;
