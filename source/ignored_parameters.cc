@@ -181,12 +181,14 @@ namespace densify
               hardening != "power law")
             return "Material/Hardening = " + hardening + ", not power law";
         }
-      if (!die && entry == "Tools/Die wall/Friction coefficient")
+      if (!die && (entry == "Tools/Die wall/Friction coefficient" ||
+                   entry == "Tools/Die wall/Top"))
         return "the die wall is off (Tools/Die wall/Enabled = false)";
       if (!die && list && entry == "Tools/Die wall/Diameter")
         return "the die wall is off (Tools/Die wall/Enabled = false) and "
                "Particles/Packing = list places no layer in it";
-      if (!lower && entry == "Tools/Lower punch/Friction coefficient")
+      if (!lower && (entry == "Tools/Lower punch/Friction coefficient" ||
+                     entry == "Tools/Lower punch/Displacement history"))
         return "the lower punch is off (Tools/Lower punch/Enabled = false)";
       if (!lower && list && entry == "Tools/Lower punch/Position")
         return "the lower punch is off (Tools/Lower punch/Enabled = false) "

@@ -347,8 +347,17 @@ namespace densify
                         "a scene without it.");
       prm.add_parameter("Position",
                         tools.lower_position,
-                        "Height z of the lower punch face, in mm (any value "
-                        "below the particles). It does not move.");
+                        "Height z of the lower punch face at t = 0, in mm "
+                        "(any value below the particles); Displacement "
+                        "history moves it.");
+      prm.add_parameter(
+        "Displacement history",
+        tools.lower_displacement,
+        "Upward displacement of the lower punch against time, as 't:d, t:d, "
+        "...' pairs (t in s, increasing; d in mm, positive raises it), "
+        "linearly interpolated and constant beyond the last time. 0:0: the "
+        "punch stays. Raising it with the upper punch withdrawn pushes the "
+        "compact out of the die (ejection; Tools/Die wall/Top).");
       prm.add_parameter("Friction coefficient",
                         tools.lower_friction,
                         "Coulomb coefficient between the particles and the "
@@ -403,6 +412,13 @@ namespace densify
                         "particles lie inside). With a generated layer it "
                         "also sets how many particles fit.",
                         Patterns::Double(1e-6));
+      prm.add_parameter(
+        "Top",
+        tools.die_top,
+        "Height z of the die's top edge, in mm (above the lower punch), or "
+        "'none' for a die without end. The edge is a sharp ring; above it "
+        "the wall holds nothing, so a compact pushed up past it by the lower "
+        "punch leaves the die (ejection).");
       prm.add_parameter("Friction coefficient",
                         tools.die_friction,
                         "Coulomb coefficient between the particles and the "

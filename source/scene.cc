@@ -31,13 +31,21 @@ namespace densify
                  const Parameters            &prm,
                  const std::vector<Particle> &particles)
     {
-      // the table is piecewise linear: its largest value in [0, End time]
-      // is at a breakpoint or at the end time
+      // the tables are piecewise linear: the punches come closest in
+      // [0, End time] at a breakpoint of either or at the end time; the
+      // stroke is the travel that takes them there (the lower punch's rise
+      // counts as stroke)
       const double end    = prm.time.end_time;
-      double       stroke = interpolate(scene.punch_table, end);
-      for (const auto &[t, v] : scene.punch_table)
-        if (t <= end)
-          stroke = std::max(stroke, v);
+      double       stroke = 0.;
+      for (const auto *table : {&scene.punch_table, &scene.lower_table})
+        for (const auto &[t, v] : *table)
+          if (t <= end)
+            stroke = std::max(stroke,
+                              interpolate(scene.punch_table, t) +
+                                interpolate(scene.lower_table, t));
+      stroke                 = std::max(stroke,
+                        interpolate(scene.punch_table, end) +
+                          interpolate(scene.lower_table, end));
       const double       gap = scene.upper_initial - prm.tools.lower_position;
       std::ostringstream message;
       message << "Tools/Upper punch/Displacement history: ";
@@ -348,6 +356,27 @@ namespace densify
     scene.lateral_table =
       parse_table(prm.tools.upper_lateral_displacement,
                   "Tools/Upper punch/Lateral displacement history");
+    scene.lower_table = parse_table(prm.tools.lower_displacement,
+                                    "Tools/Lower punch/Displacement history");
+    if (prm.tools.die_top != "none")
+      {
+        double die_top = std::numeric_limits<double>::quiet_NaN();
+        try
+          {
+            die_top = Utilities::string_to_double(prm.tools.die_top);
+          }
+        catch (...)
+          {}
+        if (!std::isfinite(die_top) ||
+            (prm.tools.lower_enabled && !(die_top > prm.tools.lower_position)))
+          throw std::runtime_error(
+            "Tools/Die wall/Top: '" + prm.tools.die_top +
+            "' is not a height above the lower punch (Tools/Lower "
+            "punch/Position = " +
+            Utilities::to_string(prm.tools.lower_position) +
+            " mm): give one, or 'none' for a die without end");
+        scene.die_top = die_top;
+      }
 
     Container container;
     container.has_die    = prm.tools.die_enabled;

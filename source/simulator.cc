@@ -92,6 +92,8 @@ namespace densify
     upper_initial    = scene.upper_initial;
     punch_table      = std::move(scene.punch_table);
     lateral_table    = std::move(scene.lateral_table);
+    lower_table      = std::move(scene.lower_table);
+    die_top          = scene.die_top;
     scene_body_force = scene.body_force;
     body_force_table = std::move(scene.body_force_table);
     for (const Particle &p : particles)
@@ -266,11 +268,14 @@ namespace densify
     std::vector<RigidTool>   tools;
     std::vector<FrictionLaw> tool_laws;
     if (effects.has_tool(ToolKind::lower_punch))
-      tools.push_back({ToolKind::lower_punch, prm.tools.lower_position});
+      tools.push_back({ToolKind::lower_punch, lower_punch_position(0.)});
     if (effects.has_tool(ToolKind::upper_punch))
       tools.push_back({ToolKind::upper_punch, upper_initial});
     if (effects.has_tool(ToolKind::die_wall))
-      tools.push_back({ToolKind::die_wall, prm.tools.die_diameter / 2});
+      {
+        tools.push_back({ToolKind::die_wall, prm.tools.die_diameter / 2});
+        tools.back().top = die_top;
+      }
     for (const RigidTool &tool : tools)
       {
         tool_laws.push_back(friction);
@@ -392,6 +397,14 @@ namespace densify
   Simulator::upper_punch_position(const double t) const
   {
     return upper_initial - interpolate(punch_table, t);
+  }
+
+
+
+  double
+  Simulator::lower_punch_position(const double t) const
+  {
+    return prm.tools.lower_position + interpolate(lower_table, t);
   }
 
 
@@ -558,10 +571,9 @@ namespace densify
       numbers::PI * std::pow(prm.tools.die_diameter / 2, 2);
     const bool has_density = prm.tools.die_enabled && prm.tools.lower_enabled &&
                              prm.tools.upper_enabled;
-    auto density = [&](const double volume, const double upper) {
-      return has_density ?
-               volume / (die_area * (upper - prm.tools.lower_position)) :
-               std::numeric_limits<double>::quiet_NaN();
+    auto density = [&](const double volume, const double gap) {
+      return has_density ? volume / (die_area * gap) :
+                           std::numeric_limits<double>::quiet_NaN();
     };
     {
       double v0 = 0;
@@ -569,7 +581,8 @@ namespace densify
         v0 += v;
       if (has_density)
         pcout << "Initial relative density " << std::fixed
-              << std::setprecision(2) << 100 * density(v0, upper_initial)
+              << std::setprecision(2)
+              << 100 * density(v0, upper_initial - lower_punch_position(0.))
               << " % (particle volume of the mesh " << std::setprecision(4)
               << v0 << " mm^3)" << std::defaultfloat << std::endl;
     }
@@ -642,10 +655,17 @@ namespace densify
         Timer          step_timer;
         const double   time  = prm.time.end_time * step / n_steps;
         const double   upper = upper_punch_position(time);
+        const double   lower = lower_punch_position(time);
         StepStatistics s;
-        s.step                   = step;
-        s.time                   = time;
-        s.punch_displacement     = upper_initial - upper;
+        s.step               = step;
+        s.time               = time;
+        s.punch_displacement = upper_initial - upper;
+        {
+          const double before = prm.time.end_time * (step - 1) / n_steps;
+          s.phase             = static_cast<unsigned int>(
+            press_phase(upper_punch_position(before) - upper,
+                        lower - lower_punch_position(before)));
+        }
         last_stabilisation_force = 0;
         ContactResults results;
         try
@@ -721,7 +741,7 @@ namespace densify
         if (this_rank == 0)
           write_failure = particle_writer->write(
             step, particles, measures, initial_volumes, partners, die_force);
-        s.relative_density = density(s.particle_volume, upper);
+        s.relative_density = density(s.particle_volume, upper - lower);
         {
           const DieStresses stress =
             die_stresses(s.upper_punch_force,
@@ -729,7 +749,7 @@ namespace densify
                          s.die_wall_radial_force,
                          prm.tools.die_enabled ? prm.tools.die_diameter : 0.,
                          prm.tools.lower_enabled && prm.tools.upper_enabled ?
-                           upper - prm.tools.lower_position :
+                           upper - lower :
                            0.);
           s.upper_punch_stress = stress.upper_punch;
           s.lower_punch_stress = stress.lower_punch;

@@ -246,6 +246,14 @@ namespace densify
            contact.tools.friction_force[upper][0]) /
             2. * (lateral - explicit_work.lateral);
         explicit_work.body += Utilities::MPI::sum(body_work, comm);
+        // the lower punch's rise (ejection), by its force at the end of the
+        // step: the travel of a step is small against the force's change
+        const unsigned int lower =
+          static_cast<unsigned int>(ToolKind::lower_punch);
+        explicit_work.tools +=
+          contact.tools.normal_force[lower] *
+          (lower_punch_position(scene_time) -
+           lower_punch_position(scene_time - scene_increment));
       }
     explicit_work.upper_force    = contact.tools.normal_force[upper];
     explicit_work.upper_friction = contact.tools.friction_force[upper];

@@ -142,6 +142,8 @@ namespace densify
     if (tool_contact)
       {
         tool_contact->set_tool_position(ToolKind::upper_punch, upper);
+        tool_contact->set_tool_position(ToolKind::lower_punch,
+                                        lower_punch_position(time));
         tool_contact->set_tool_translation(
           ToolKind::upper_punch,
           Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
@@ -153,7 +155,10 @@ namespace densify
       tool_contact->set_friction_regularisation(regularisation);
     if (particle_contact)
       particle_contact->set_friction_regularisation(regularisation);
-    return std::abs(upper - current_upper);
+    // the larger of the punches' travels over the increment
+    return std::max(std::abs(upper - current_upper),
+                    std::abs(lower_punch_position(time) -
+                             lower_punch_position(time - increment)));
   }
 
 

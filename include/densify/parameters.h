@@ -109,6 +109,9 @@ namespace densify
     bool lower_enabled = true;
     /// Lower punch face height (mm).
     double lower_position = 0.;
+    /// Upward displacement history of the lower punch "t:d, ..." (s:mm),
+    /// piecewise linear: ejection.
+    std::string lower_displacement = "0:0";
     /// Upper punch present?
     bool upper_enabled = true;
     /// Upper punch face height at t = 0 (mm), or "auto": top of the highest
@@ -120,6 +123,8 @@ namespace densify
     bool die_enabled = false;
     /// Inner die diameter (mm).
     double die_diameter = 20.;
+    /// Height of the die's top edge (mm), or "none": a die without end.
+    std::string die_top = "none";
     /// Sideways (x) displacement history of the upper punch "t:d, ..."
     /// (s:mm).
     std::string upper_lateral_displacement = "0:0";

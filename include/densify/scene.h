@@ -7,6 +7,7 @@
 #include <densify/parameters.h>
 
 #include <array>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,10 @@ namespace densify
     std::vector<std::pair<double, double>> punch_table;
     /// Sideways (x) upper punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> lateral_table;
+    /// Upward lower punch displacement against time (s, mm).
+    std::vector<std::pair<double, double>> lower_table;
+    /// Height of the die's top edge (mm; infinity: none).
+    double die_top = std::numeric_limits<double>::infinity();
     /// Body force on every particle (N/mm^3) and its factor against time.
     Tensor<1, 3>                           body_force;
     std::vector<std::pair<double, double>> body_force_table;

@@ -293,6 +293,10 @@ namespace densify
     double
     upper_punch_position(const double t) const;
 
+    /// Position of the lower punch face at time @p t (mm).
+    double
+    lower_punch_position(const double t) const;
+
     /// Write the .pvtu of this step and rewrite the .pvd.
     void
     write_graphics(const unsigned int step, const double time);
@@ -450,6 +454,10 @@ namespace densify
     Tensor<1, 3>                           scene_body_force;
     std::vector<std::pair<double, double>> body_force_table;
     std::vector<std::pair<double, double>> lateral_table;
+    /// The lower punch's upward displacement against time, and the die's
+    /// top edge (infinity: none).
+    std::vector<std::pair<double, double>> lower_table;
+    double die_top = std::numeric_limits<double>::infinity();
 
     /// The implicit method: Newton's method, the load stepper, the linear
     /// solver; null with explicit dynamics.

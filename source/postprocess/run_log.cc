@@ -136,6 +136,8 @@ namespace densify
       out << "  density " << std::setprecision(4) << 100 * s.relative_density
           << " %";
     out << "  V/V0 min " << std::setprecision(2) << s.min_cell_volume_ratio;
+    if (s.phase != static_cast<unsigned int>(PressPhase::load))
+      out << "  " << phase_name(static_cast<PressPhase>(s.phase));
     if (explicit_dynamics)
       out << "  explicit " << s.increments << " steps (dt "
           << std::setprecision(3) << s.time_step << " s)  KE/IE "

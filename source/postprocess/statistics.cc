@@ -85,7 +85,40 @@ namespace densify
            "energy_balance,multiplier_work,continuations,min_cell_volume_ratio,"
            "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
            "radial_axial_ratio,compact_height,compact_diameter,"
-           "envelope_density";
+           "envelope_density,phase";
+  }
+
+
+
+  PressPhase
+  press_phase(const double upper_advance, const double lower_rise)
+  {
+    // travel below a nanometre is the round-off of a step's end time
+    // against a breakpoint of the tables, not motion
+    constexpr double still = 1e-6;
+    if (upper_advance > still)
+      return PressPhase::load;
+    if (lower_rise > still)
+      return PressPhase::eject;
+    return upper_advance < -still ? PressPhase::unload : PressPhase::hold;
+  }
+
+
+
+  std::string
+  phase_name(const PressPhase phase)
+  {
+    switch (phase)
+      {
+        case PressPhase::load:
+          return "load";
+        case PressPhase::hold:
+          return "hold";
+        case PressPhase::unload:
+          return "unload";
+        default:
+          return "eject";
+      }
   }
 
 
@@ -118,7 +151,7 @@ namespace densify
         << s.upper_punch_stress << ',' << s.lower_punch_stress << ','
         << s.die_wall_pressure << ',' << s.radial_axial_ratio << ','
         << s.compact_height << ',' << s.compact_diameter << ','
-        << s.envelope_density << '\n';
+        << s.envelope_density << ',' << s.phase << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <limits>
 #include <string>
 
 namespace densify
@@ -38,6 +39,8 @@ namespace densify
     ToolKind kind = ToolKind::lower_punch;
     /// Plane height (mm) for punches, radius (mm) for the die wall.
     double position = 0.;
+    /// Height of the die wall's top edge (mm; infinity: a die without end).
+    double top = std::numeric_limits<double>::infinity();
 
     /// Signed gap of @p x (mm); writes the normal and, for the die wall, the
     /// curvature 1/r of the surface at the projection (0 for planes).
@@ -58,8 +61,22 @@ namespace densify
             {
               const double r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
               // on the axis any inward direction is as good as another
-              normal    = (r > 0 ? Tensor<1, 3>({-x[0] / r, -x[1] / r, 0.}) :
-                                   Tensor<1, 3>({-1., 0., 0.}));
+              const Tensor<1, 3> e_r =
+                (r > 0 ? Tensor<1, 3>({x[0] / r, x[1] / r, 0.}) :
+                         Tensor<1, 3>({1., 0., 0.}));
+              if (x[2] > top)
+                {
+                  // above the die: the distance to its top edge (the ring
+                  // r = position, z = top), continuous with the wall's gap
+                  // and normal at z = top; no curvature term in the tangent
+                  const double dr = r - position, dz = x[2] - top;
+                  const double d = std::sqrt(dr * dr + dz * dz);
+                  normal         = (dr / d) * e_r;
+                  normal[2]      = dz / d;
+                  curvature      = 0.;
+                  return d;
+                }
+              normal    = -e_r;
               curvature = (r > 0 ? 1. / r : 0.);
               return position - r;
             }

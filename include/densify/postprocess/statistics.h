@@ -92,7 +92,35 @@ namespace densify
     /// cylinder about the die axis of the deformed particles
     /// (compact_envelope()), and the particle volume over its volume.
     double compact_height = 0., compact_diameter = 0., envelope_density = 0.;
+    /// The press cycle's phase over the step, as a number (PressPhase).
+    unsigned int phase = 0;
   };
+
+  /// The phase of a press cycle in a step; its number is the statistics.csv
+  /// column `phase`.
+  enum class PressPhase : unsigned int
+  {
+    /// The upper punch advances (with or without the lower one rising).
+    load = 0,
+    /// Neither punch moves.
+    hold = 1,
+    /// The upper punch withdraws while the lower punch stays.
+    unload = 2,
+    /// The lower punch rises while the upper punch does not advance: the
+    /// compact is pushed out of the die.
+    eject = 3
+  };
+
+  /**
+   * The phase of a step in which the upper punch advanced (moved down) by
+   * @p upper_advance and the lower punch rose by @p lower_rise (mm).
+   */
+  PressPhase
+  press_phase(const double upper_advance, const double lower_rise);
+
+  /// The phase's name: "load", "hold", "unload" or "eject".
+  std::string
+  phase_name(const PressPhase phase);
 
   /**
    * Writes statistics.csv: a header line, then one row per step, flushed

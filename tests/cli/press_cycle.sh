@@ -1,0 +1,70 @@
+# The press cycle (prm/press_cycle_sn_light.prm; doc/user_guide.md, "A
+# press cycle"), shrunk to a 0.6 mm mesh, a 7.52 mm die (the spheres span
+# 7.5 mm, so the die wall carries early) and 23 steps of 20 ms: the seven
+# tin spheres pressed by 0.7 mm (10 steps), held (1), unloaded by 0.05 mm
+# (2), and pushed up through the die by the lower punch (10 steps of
+# 0.1 mm: the compact's top leaves the die's top at 2.5 mm, its particles'
+# flattened sides stay in the die) with the upper punch withdrawn ahead of
+# them. Implicit, 1 rank.
+#   1. The phase column runs load, hold, unload, eject in that order, each
+#      present; the upper punch carries nothing after the unloading.
+#   2. While the compact slides inside the die (the eject rows before it
+#      reaches the die's top), the ejection force (lower_punch_force) is the
+#      die wall's friction: 0.2 times its radial force within 5 %.
+#   3. The compact's envelope density at the end, partly out of the die, is
+#      below the one in the die at full load (springback).
+#   4. A run stopped in the ejection phase (--stop-after) and resumed ends
+#      with the rows of the uninterrupted run (all but the wall times).
+set -u
+cd "$WORK_DIR"
+fails=0
+cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=0"
+  --set "Output/Checkpoint interval=1" --set "Tools/Die wall/Diameter=7.52"
+  --set "Tools/Upper punch/Displacement history=0:0, 0.2:0.7, 0.22:0.7, 0.26:0.65, 0.46:-1.5"
+  --set "Tools/Lower punch/Displacement history=0:0, 0.26:0, 0.46:1"
+  --set "Time stepping/End time=0.46" --set "Time stepping/Number of steps=23")
+scene="$SOURCE_DIR/prm/press_cycle_sn_light.prm"
+"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=whole" > whole.log 2>&1 ||
+  { echo "FAIL the cycle"; tail -n 5 whole.log; fails=$((fails + 1)); }
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { ph = $c["phase"]; n = NR
+    if (ph < last) { print "FAIL phase " ph " after " last " at step " $1; bad++ }
+    seen[ph]++; last = ph
+    if (ph == 0) full = $c["envelope_density"]
+    if (ph >= 2 && $c["upper_punch_force"] != 0) {
+      print "FAIL the upper punch carries " $c["upper_punch_force"] " N at step " $1; bad++ }
+    if (ph == 3 && $c["die_wall_radial_force"] > 0 &&
+        $c["die_wall_radial_force"] > 0.9 * radial_max) {
+      F = $c["lower_punch_force"]; mu_N = 0.2 * $c["die_wall_radial_force"]
+      dev = (F - mu_N) / mu_N; if (dev < 0) dev = -dev
+      if (dev > worst) worst = dev; checked++ }
+    if (ph == 3 && $c["die_wall_radial_force"] > radial_max) radial_max = $c["die_wall_radial_force"]
+    end_density = $c["envelope_density"] }
+  END {
+    for (p = 0; p < 4; ++p) if (!seen[p]) { print "FAIL no phase " p; bad++ }
+    if (!checked) { print "FAIL no ejection row slides in the die"; bad++ }
+    else if (worst > 0.05) { print "FAIL ejection force off mu N by " 100 * worst " %"; bad++ }
+    if (!(end_density < full)) { print "FAIL envelope density " full " -> " end_density; bad++ }
+    printf "phases: load %d, hold %d, unload %d, eject %d steps\n", seen[0], seen[1], seen[2], seen[3]
+    printf "ejection force against 0.2 x the radial force: largest deviation %.3g %% over %d steps\n", 100 * worst, checked
+    printf "envelope density %.4f at full load, %.4f after the ejection\n", full, end_density
+    exit bad > 0 }' whole/statistics.csv || fails=$((fails + 1))
+
+# stopped in the ejection phase and resumed
+stop=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  $c["phase"] == 3 { n++; if (n == 4) { print $1; exit } }' whole/statistics.csv)
+"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=parts" --stop-after "$stop" > part1.log 2>&1
+[ $? -eq 3 ] || { echo "FAIL --stop-after $stop did not stop with exit 3"; fails=$((fails + 1)); }
+"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=parts" --resume > part2.log 2>&1 ||
+  { echo "FAIL the resumed run"; tail -n 5 part2.log; fails=$((fails + 1)); }
+strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_seconds" || $i == "step_seconds") skip[i] = 1 }
+  { line = ""; for (i = 1; i <= NF; ++i) if (!skip[i]) line = line $i ","; print line }' "$1"; }
+if cmp -s <(strip whole/statistics.csv) <(strip parts/statistics.csv); then
+  echo "stopped after step $stop (ejection) and resumed: the rows of the uninterrupted run"
+else
+  echo "FAIL the resumed cycle differs from the uninterrupted one"
+  diff <(strip whole/statistics.csv) <(strip parts/statistics.csv) | head -n 6
+  fails=$((fails + 1))
+fi
+[ "$fails" -eq 0 ] || { echo "$fails check(s) failed"; exit 1; }
+echo "all checks passed"
