@@ -1,5 +1,6 @@
 // Punch stresses, die wall pressure, and the Heckel and Kawakita fits.
 #include <densify/postprocess/compaction_curve.h>
+#include <densify/postprocess/statistics.h>
 
 #include <algorithm>
 #include <cmath>
@@ -215,7 +216,23 @@ namespace densify
       return "";
     const std::size_t full =
       std::max_element(stroke.begin(), stroke.end()) - stroke.begin();
-    const std::size_t last = stroke.size() - 1;
+    std::size_t last = stroke.size() - 1;
+    // a press cycle: the compact as the unloading left it, before the
+    // ejection pushes it out of the die (a file without the phase column
+    // is taken as it is)
+    try
+      {
+        const std::vector<double> phase =
+          read_columns(statistics_csv, {"phase"})[0];
+        for (std::size_t i = full; i < phase.size(); ++i)
+          if (phase[i] == static_cast<double>(PressPhase::eject))
+            {
+              last = i - 1;
+              break;
+            }
+      }
+    catch (const std::exception &)
+      {}
     // unloaded: the punch back from its farthest travel, and off the
     // compact (no force left on it)
     if (!(stroke[last] < stroke[full]) || c[1][last] != 0.)

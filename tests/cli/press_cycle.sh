@@ -12,7 +12,9 @@
 #      reaches the die's top), the ejection force (lower_punch_force) is the
 #      die wall's friction: 0.2 times its radial force within 5 %.
 #   3. The compact's envelope density at the end, partly out of the die, is
-#      below the one in the die at full load (springback).
+#      below the one in the die at full load (springback), and the run's
+#      springback line measures the compact the unloading left, before the
+#      ejection.
 #   4. A run stopped in the ejection phase (--stop-after) and resumed ends
 #      with the rows of the uninterrupted run (all but the wall times).
 set -u
@@ -30,7 +32,8 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { ph = $c["phase"]; n = NR
     if (ph < last) { print "FAIL phase " ph " after " last " at step " $1; bad++ }
     seen[ph]++; last = ph
-    if (ph == 0) full = $c["envelope_density"]
+    if (ph == 0) { full = $c["envelope_density"]; h_full = $c["compact_height"] }
+    if (ph == 2) h_unloaded = $c["compact_height"]
     if (ph >= 2 && $c["upper_punch_force"] != 0) {
       print "FAIL the upper punch carries " $c["upper_punch_force"] " N at step " $1; bad++ }
     if (ph == 3 && $c["die_wall_radial_force"] > 0 &&
@@ -48,7 +51,12 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     printf "phases: load %d, hold %d, unload %d, eject %d steps\n", seen[0], seen[1], seen[2], seen[3]
     printf "ejection force against 0.2 x the radial force: largest deviation %.3g %% over %d steps\n", 100 * worst, checked
     printf "envelope density %.4f at full load, %.4f after the ejection\n", full, end_density
-    exit bad > 0 }' whole/statistics.csv || fails=$((fails + 1))
+    printf "axial %.4g %%\n", 100 * (h_unloaded - h_full) / h_full
+    exit bad > 0 }' whole/statistics.csv > rows.txt || fails=$((fails + 1))
+cat rows.txt
+axial=$(awk '/^axial/ { print $2 }' rows.txt)
+grep "Springback" whole.log | grep -q "axial $axial %" ||
+  { echo "FAIL the springback line is not the unloaded rows' ($axial %)"; fails=$((fails + 1)); }
 
 # stopped in the ejection phase and resumed
 stop=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
