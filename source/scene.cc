@@ -35,17 +35,17 @@ namespace densify
       // [0, End time] at a breakpoint of either or at the end time; the
       // stroke is the travel that takes them there (the lower punch's rise
       // counts as stroke)
-      const double end    = prm.time.end_time;
-      double       stroke = 0.;
+      const double        end = prm.time.end_time;
+      std::vector<double> times(1, end);
       for (const auto *table : {&scene.punch_table, &scene.lower_table})
         for (const auto &[t, v] : *table)
           if (t <= end)
-            stroke = std::max(stroke,
-                              interpolate(scene.punch_table, t) +
-                                interpolate(scene.lower_table, t));
-      stroke                 = std::max(stroke,
-                        interpolate(scene.punch_table, end) +
-                          interpolate(scene.lower_table, end));
+            times.push_back(t);
+      double stroke = 0.;
+      for (const double t : times)
+        stroke = std::max(stroke,
+                          interpolate(scene.punch_table, t) +
+                            interpolate(scene.lower_table, t));
       const double       gap = scene.upper_initial - prm.tools.lower_position;
       std::ostringstream message;
       message << "Tools/Upper punch/Displacement history: ";

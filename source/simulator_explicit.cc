@@ -246,8 +246,8 @@ namespace densify
            contact.tools.friction_force[upper][0]) /
             2. * (lateral - explicit_work.lateral);
         explicit_work.body += Utilities::MPI::sum(body_work, comm);
-        // the lower punch's rise (ejection), by its force at the end of the
-        // step: the travel of a step is small against the force's change
+        // the lower punch's rise (ejection) times its force at the end of
+        // the step: over one explicit step the force changes little
         const unsigned int lower =
           static_cast<unsigned int>(ToolKind::lower_punch);
         explicit_work.tools +=
