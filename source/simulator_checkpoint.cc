@@ -11,8 +11,10 @@
 // serializes its own classes.
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <densify/parameters.h>
 #include <densify/simulator.h>
 #include <densify/utilities.h>
 
@@ -26,6 +28,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -95,21 +98,38 @@ namespace densify
       return "no other entry";
     }
 
-    /// The lines of the fingerprint @p stored whose entry @p current checks
-    /// too: a checkpoint of an earlier densify may hold entries that are
-    /// now free to change on --resume.
+    /// The fingerprint @p stored as this densify would have written it, in
+    /// the order of @p current: a checkpoint of an earlier densify may hold
+    /// entries that are now free to change on --resume (dropped), and lack
+    /// entries added since, which that densify in effect had at their
+    /// defaults (the default taken).
     std::string
     checked_entries(const std::string &stored, const std::string &current)
     {
-      std::set<std::string> keys;
-      std::istringstream    in_current(current);
-      for (std::string line; std::getline(in_current, line);)
-        keys.insert(line.substr(0, line.find(" = ")));
+      const auto by_key = [](const std::string &text) {
+        std::map<std::string, std::string> lines;
+        std::istringstream                 in(text);
+        for (std::string line; std::getline(in, line);)
+          lines[line.substr(0, line.find(" = "))] = line;
+        return lines;
+      };
+      Parameters       defaults;
+      ParameterHandler prm;
+      defaults.declare(prm);
+      const auto         old_lines     = by_key(stored);
+      const auto         default_lines = by_key(parameter_fingerprint(prm));
       std::string        result;
-      std::istringstream in_stored(stored);
-      for (std::string line; std::getline(in_stored, line);)
-        if (keys.count(line.substr(0, line.find(" = "))) != 0)
-          result += line + '\n';
+      std::istringstream in_current(current);
+      for (std::string line; std::getline(in_current, line);)
+        {
+          const std::string key = line.substr(0, line.find(" = "));
+          const auto        old = old_lines.find(key);
+          const auto        def = default_lines.find(key);
+          if (old != old_lines.end())
+            result += old->second + '\n';
+          else if (def != default_lines.end())
+            result += def->second + '\n';
+        }
       return result;
     }
   } // namespace

@@ -363,8 +363,13 @@ namespace densify
                                 const unsigned int          *first,
                                 const unsigned int          *last,
                                 const std::vector<Point<3>> &vertices,
-                                double &distance_squared) const
+                                double                      &distance_squared,
+                                const unsigned int           particle) const
   {
+    bool only_particle = false;
+    if (particle != numbers::invalid_unsigned_int)
+      for (const unsigned int *c = first; c != last && !only_particle; ++c)
+        only_particle = facets[*c].particle == particle;
     // each particle's closest facet (its normal once chosen); a point meets
     // few particles, so a short list
     struct Offer
@@ -376,10 +381,12 @@ namespace densify
     boost::container::small_vector<Offer, 8> offers;
     for (const unsigned int *c = first; c != last; ++c)
       {
-        double             d2;
-        const Projection   pr = project(x, *c, vertices, 0., d2, false);
-        const unsigned int p  = facets[*c].particle;
-        auto               o  = offers.begin();
+        const unsigned int p = facets[*c].particle;
+        if (only_particle && p != particle)
+          continue;
+        double           d2;
+        const Projection pr = project(x, *c, vertices, 0., d2, false);
+        auto             o  = offers.begin();
         while (o != offers.end() && o->particle != p)
           ++o;
         if (o == offers.end())
@@ -577,8 +584,15 @@ namespace densify
                     const unsigned int *last =
                       use_lists ? near.facets.data() + near.start[idx + 1] :
                                   candidates.data() + end;
-                    best = choose_facet(x_s, first, last, x_now, best_distance);
+                    // a point keeps its particle within a Newton solve
                     const unsigned int old = assigned[idx];
+                    const unsigned int particle =
+                      (out.new_assignment != nullptr &&
+                       old != numbers::invalid_unsigned_int) ?
+                        facets[old].particle :
+                        numbers::invalid_unsigned_int;
+                    best = choose_facet(
+                      x_s, first, last, x_now, best_distance, particle);
                     if (out.new_assignment != nullptr &&
                         old != numbers::invalid_unsigned_int &&
                         old != best.facet &&

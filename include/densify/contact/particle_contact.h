@@ -158,11 +158,12 @@ namespace densify
      * the facet enlarged about its centroid by #projection_band of its size
      * beyond each edge, and no other candidate facet is closer by more than
      * that band times the facet's size; otherwise it takes the closest
-     * candidate facet. Evaluations between two calls use the assigned
-     * facets (enlarged), so the residual stays continuous while a point
-     * slides across a facet edge instead of jumping with the facet normal.
-     * Returns how many points in contact changed their facet (the sum over
-     * all ranks, on every rank).
+     * candidate facet of the same particle (a point keeps its particle from
+     * the first call after reset_projections() on). Evaluations between two
+     * calls use the assigned facets (enlarged), so the residual stays
+     * continuous while a point slides across a facet edge instead of jumping
+     * with the facet normal. Returns how many points in contact changed their
+     * facet (the sum over all ranks, on every rank).
      */
     unsigned int
     update_projections(const Mapping<3>                    &mapping,
@@ -308,13 +309,19 @@ namespace densify
      * three particles meet, a point can be inside one particle and yet
      * closer to the surface of another, outside which it lies; the closest
      * facet alone would hide that penetration (doc/theory.md section 9).
+     * With a valid @p particle, only that particle's facets are offered
+     * (all of them if it has none among the candidates): within a Newton
+     * solve a point keeps the particle its first iterate chose, so the
+     * residual does not jump between particles from one iterate to the next.
      */
     Projection
-    choose_facet(const Point<3>              &x,
-                 const unsigned int          *first,
-                 const unsigned int          *last,
-                 const std::vector<Point<3>> &vertices,
-                 double                      &distance_squared) const;
+    choose_facet(
+      const Point<3>              &x,
+      const unsigned int          *first,
+      const unsigned int          *last,
+      const std::vector<Point<3>> &vertices,
+      double                      &distance_squared,
+      const unsigned int particle = numbers::invalid_unsigned_int) const;
 
     /// How far beyond its edges a slave point keeps its master facet, in
     /// barycentric coordinates (update_projections()).
