@@ -385,7 +385,40 @@ namespace densify
         "'t:d, t:d, ...' pairs (t in s, increasing; d in mm, positive "
         "compresses), linearly interpolated and constant beyond the last "
         "time. The stroke sets the final density; a flat segment holds, a "
-        "falling one unloads.");
+        "falling one unloads. Within the times of a Force history or "
+        "Pressure history the force rules; after them this history goes on "
+        "from where the force control left the punch.");
+      prm.add_parameter(
+        "Force history",
+        tools.upper_force,
+        "Target compressive force on the upper punch against time, as "
+        "'t:F, t:F, ...' pairs (t in s, increasing, within End time; F in "
+        "N, >= 0), linearly interpolated. Between its first and last time "
+        "the punch moves to carry the target (force control; 'press to, "
+        "hold, release'); before and after, Displacement history moves it. "
+        "Empty: displacement control throughout.");
+      prm.add_parameter(
+        "Pressure history",
+        tools.upper_pressure,
+        "The same as Force history, as the mean axial stress over the die's "
+        "bore, 't:p, ...' pairs (s:MPa); needs the die. Give either this or "
+        "Force history.");
+      prm.add_parameter(
+        "Force tolerance",
+        tools.force_tolerance,
+        "Relative tolerance of the force control: the implicit method "
+        "moves the punch until its force is within this fraction of the "
+        "larger of the target and the largest force so far (> 0). The "
+        "explicit method corrects each station's travel from the last "
+        "one's force instead.");
+      prm.add_parameter(
+        "Maximum speed",
+        tools.max_speed,
+        "Largest speed of the upper punch under force control, in mm/s "
+        "(>= 0), as a servo press has: a target that needs more travel in a "
+        "step is approached at this speed (the force lags its target "
+        "meanwhile). 0: the steepest segment of Displacement history (for a "
+        "constant history, the gap between the punches over End time).");
       prm.add_parameter(
         "Lateral displacement history",
         tools.upper_lateral_displacement,

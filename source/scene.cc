@@ -23,6 +23,59 @@ namespace densify
 {
   namespace
   {
+    /// The upper punch's target force table from Tools/Upper punch/Force
+    /// history or Pressure history (empty if neither is given).
+    std::vector<std::pair<double, double>>
+    force_table(const Parameters &prm)
+    {
+      const std::string &force       = prm.tools.upper_force;
+      const std::string &pressure    = prm.tools.upper_pressure;
+      const bool         by_force    = !Utilities::trim(force).empty();
+      const bool         by_pressure = !Utilities::trim(pressure).empty();
+      if (by_force && by_pressure)
+        throw std::runtime_error(
+          "Tools/Upper punch/Pressure history: give either it or Force "
+          "history, not both");
+      if (!by_force && !by_pressure)
+        return {};
+      if (by_pressure && !prm.tools.die_enabled)
+        throw std::runtime_error(
+          "Tools/Upper punch/Pressure history: a mean stress needs the die's "
+          "bore (Tools/Die wall/Enabled = true); give a Force history instead");
+      const std::string what = by_force ? "Tools/Upper punch/Force history" :
+                                          "Tools/Upper punch/Pressure history";
+      std::vector<std::pair<double, double>> table =
+        parse_table(by_force ? force : pressure, what);
+      if (table.size() < 2)
+        throw std::runtime_error(
+          what + ": give at least two pairs (the force control acts between "
+                 "the first time and the last)");
+      for (auto &[t, value] : table)
+        {
+          if (t < 0. || t > prm.time.end_time)
+            throw std::runtime_error(what + ": the time " + std::to_string(t) +
+                                     " s lies outside [0, Time stepping/End "
+                                     "time]; give times within the run");
+          if (value < 0.)
+            throw std::runtime_error(
+              what + ": " + std::to_string(value) +
+              " is negative; give compressive values (>= 0)");
+          if (by_pressure)
+            value *= numbers::PI / 4. * prm.tools.die_diameter *
+                     prm.tools.die_diameter;
+        }
+      if (!(prm.tools.max_speed >= 0.))
+        throw std::runtime_error(
+          "Tools/Upper punch/Maximum speed: give a speed >= 0 (mm/s; 0 takes "
+          "the displacement history's)");
+      if (!(prm.tools.force_tolerance > 0.))
+        throw std::runtime_error(
+          "Tools/Upper punch/Force tolerance: give a positive relative "
+          "tolerance (e.g. 1e-3)");
+      return table;
+    }
+
+
     /// Refuses an upper punch history that reaches the lower punch, or that
     /// would press the spheres' volume past the die's (relative density
     /// above 100 %), before anything is meshed.
@@ -342,6 +395,7 @@ namespace densify
         }
     scene.punch_table = parse_table(prm.tools.upper_displacement,
                                     "Tools/Upper punch/Displacement history");
+    scene.force_table = force_table(prm);
 
     {
       const std::vector<Point<3>> b =

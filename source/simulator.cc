@@ -82,15 +82,40 @@ namespace densify
 
 
 
+  double
+  Simulator::force_control_speed(
+    const std::vector<std::pair<double, double>> &table) const
+  {
+    if (prm.tools.max_speed > 0.)
+      return prm.tools.max_speed;
+    // the steepest segment of the displacement history
+    double speed = 0.;
+    for (unsigned int i = 1; i < table.size(); ++i)
+      speed = std::max(speed,
+                       std::abs(table[i].second - table[i - 1].second) /
+                         (table[i].first - table[i - 1].first));
+    return speed > 0. ?
+             speed :
+             (upper_initial - prm.tools.lower_position) / prm.time.end_time;
+  }
+
+
+
   void
   Simulator::setup_particles()
   {
     Scene scene = given_scene ? std::move(*given_scene) : build_scene(prm);
     given_scene.reset();
-    effects          = resolve_effects(prm, scene);
-    particles        = std::move(scene.particles);
-    upper_initial    = scene.upper_initial;
-    punch_table      = std::move(scene.punch_table);
+    effects       = resolve_effects(prm, scene);
+    particles     = std::move(scene.particles);
+    upper_initial = scene.upper_initial;
+    punch_control = PunchControl(
+      scene.punch_table,
+      scene.force_table,
+      prm.tools.force_tolerance,
+      // before the first contact, a hundredth of the gap between the punches
+      0.01 * (upper_initial - prm.tools.lower_position),
+      force_control_speed(scene.punch_table));
     lateral_table    = std::move(scene.lateral_table);
     lower_table      = std::move(scene.lower_table);
     die_top          = scene.die_top;
@@ -396,7 +421,7 @@ namespace densify
   double
   Simulator::upper_punch_position(const double t) const
   {
-    return upper_initial - interpolate(punch_table, t);
+    return upper_initial - punch_control.travel(t);
   }
 
 
@@ -653,19 +678,12 @@ namespace densify
     for (unsigned int step = first_step; step <= n_steps; ++step)
       {
         Timer          step_timer;
-        const double   time  = prm.time.end_time * step / n_steps;
-        const double   upper = upper_punch_position(time);
-        const double   lower = lower_punch_position(time);
+        const double   time         = prm.time.end_time * step / n_steps;
+        const double   before       = prm.time.end_time * (step - 1) / n_steps;
+        const double   upper_before = upper_punch_position(before);
         StepStatistics s;
-        s.step               = step;
-        s.time               = time;
-        s.punch_displacement = upper_initial - upper;
-        {
-          const double before = prm.time.end_time * (step - 1) / n_steps;
-          s.phase             = static_cast<unsigned int>(
-            press_phase(upper_punch_position(before) - upper,
-                        lower - lower_punch_position(before)));
-        }
+        s.step                   = step;
+        s.time                   = time;
         last_stabilisation_force = 0;
         ContactResults results;
         try
@@ -707,6 +725,14 @@ namespace densify
               "Time stepping/Maximum cut-backs settings");
           }
         const ToolContactResult &contact = results.tools;
+        // where the step left the punches (a force-controlled punch is
+        // where its force took it)
+        const double upper   = upper_punch_position(time);
+        const double lower   = lower_punch_position(time);
+        s.punch_displacement = upper_initial - upper;
+        s.phase              = static_cast<unsigned int>(
+          press_phase(upper_before - upper,
+                      lower - lower_punch_position(before)));
 
         const auto upper_kind =
           static_cast<unsigned int>(ToolKind::upper_punch);

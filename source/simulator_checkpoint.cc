@@ -37,7 +37,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 6;
+    constexpr unsigned int checkpoint_version = 7;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -202,7 +202,7 @@ namespace densify
       // the explicit steps the mass scaling was set for
       unsigned int n_explicit = prm.explicit_dynamics.n_steps;
       archive &dynamics &work &factors &calibration &bound &updates &mode
-        &n_explicit;
+        &n_explicit &punch_control;
       // each force term's state (history, multipliers, friction)
       for (const ForceTerm *term : force_terms())
         term->write_checkpoint(archive);
@@ -383,7 +383,7 @@ namespace densify
         archive &step &current_time &current_upper &next_increment
           &last_punch_increment &wall &solution_values &increment_values
             &pvd_records &dynamics &explicit_work &factors &calibration
-              &calibrated_bound &mass_updates &mode &n_explicit;
+              &calibrated_bound &mass_updates &mode &n_explicit &punch_control;
         for (ForceTerm *term : force_terms())
           term->read_checkpoint(archive);
       }

@@ -158,7 +158,7 @@ namespace densify
                     TrilinosWrappers::MPI::Vector       &internal,
                     TrilinosWrappers::MPI::Vector       &external)
   {
-    set_loads(scene_time, scene_increment);
+    apply_loads(scene_time, scene_increment);
     if (&u != &solution)
       solution = u;
     update_ghosts();
@@ -305,9 +305,12 @@ namespace densify
                               StepStatistics    &s)
   {
     (void)step;
-    interval_sum     = ContactResults();
-    interval_moment  = ContactResults();
-    interval_weight  = {{0., 0., 0.}};
+    interval_sum    = ContactResults();
+    interval_moment = ContactResults();
+    interval_weight = {{0., 0., 0.}};
+    // half the force's gap to the target per station: the station's force
+    // lags its move, and closing all of it overshoots
+    punch_control.plan(time, 0.5);
     explicit_account = explicit_dynamics->advance(*this, solution, time);
     current_time     = time;
     current_upper    = upper_punch_position(time);
@@ -345,6 +348,8 @@ namespace densify
     fit.particles.friction_force =
       at_station(interval_sum.particles.friction_force,
                  m.particles.friction_force);
+    punch_control.accept(
+      fit.tools.normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
     return fit;
   }
 

@@ -135,8 +135,37 @@ namespace densify
   double
   Simulator::set_loads(const double time, const double increment)
   {
+    punch_control.plan(time);
+    return apply_loads(time, increment);
+  }
+
+
+
+  bool
+  Simulator::loads_reached(double &scale)
+  {
+    const double force =
+      last_contact.tools
+        .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)];
+    if (punch_control.correct(force, scale))
+      return true;
+    apply_loads(load_time, 0.);
+    return false;
+  }
+
+
+
+  double
+  Simulator::apply_loads(const double time, const double increment)
+  {
     const double upper = upper_punch_position(time);
-    load_time          = time;
+    if (upper <= lower_punch_position(time))
+      throw ConvergenceError(
+        "Tools/Upper punch/Force history: the target force of " +
+        std::to_string(punch_control.target(time)) +
+        " N at t = " + std::to_string(time) +
+        " s is not reached before the upper punch meets the lower one; give a smaller force");
+    load_time = time;
     if (body_force)
       body_force->set_time(time);
     if (tool_contact)
@@ -222,6 +251,9 @@ namespace densify
     for (ForceTerm *term : other_terms)
       term->commit(c);
     committed_ghosted = solution;
-    current_upper     = upper_punch_position(load_time);
+    punch_control.accept(
+      last_contact.tools
+        .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
+    current_upper = upper_punch_position(load_time);
   }
 } // namespace densify

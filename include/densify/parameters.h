@@ -119,6 +119,17 @@ namespace densify
     std::string upper_initial_position = "auto";
     /// Downward displacement history "t:d, t:d, ..." (s:mm), piecewise linear.
     std::string upper_displacement = "0:0, 1:0.1";
+    /// Target force history of the upper punch "t:F, ..." (s:N); within its
+    /// times the punch is force-controlled. Empty: displacement control.
+    std::string upper_force;
+    /// The same as a mean axial stress over the die's bore "t:p, ..."
+    /// (s:MPa).
+    std::string upper_pressure;
+    /// Relative tolerance of the force control.
+    double force_tolerance = 1e-3;
+    /// Largest punch speed under force control (mm/s; 0: from the
+    /// displacement history).
+    double max_speed = 0.;
     /// Die wall present?
     bool die_enabled = false;
     /// Inner die diameter (mm).

@@ -22,6 +22,8 @@ namespace densify
     double upper_initial = 0.;
     /// Downward punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> punch_table;
+    /// The upper punch's target force against time (s, N; empty: none).
+    std::vector<std::pair<double, double>> force_table;
     /// Sideways (x) upper punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> lateral_table;
     /// Upward lower punch displacement against time (s, mm).

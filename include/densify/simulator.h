@@ -26,6 +26,7 @@
 #include <densify/contact/tool_contact.h>
 #include <densify/drivers/explicit_dynamics.h>
 #include <densify/drivers/load_stepper.h>
+#include <densify/drivers/punch_control.h>
 #include <densify/effects.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/j2_plasticity.h>
@@ -278,6 +279,8 @@ namespace densify
     iteration_details() override;
     double
     set_loads(const double time, const double increment) override;
+    bool
+    loads_reached(double &scale) override;
     double
     evaluate_constraints() override;
     void
@@ -288,6 +291,20 @@ namespace densify
     restore_state() override;
     void
     commit() override;
+
+    /// Set the tools, body force and friction scale for time @p time,
+    /// reached by an increment of @p increment (both methods; the upper
+    /// punch where punch_control has it); returns the larger punch travel
+    /// over the increment (mm).
+    double
+    apply_loads(const double time, const double increment);
+
+    /// The upper punch's largest speed under force control (mm/s):
+    /// Tools/Upper punch/Maximum speed, or from the displacement history
+    /// @p table.
+    double
+    force_control_speed(
+      const std::vector<std::pair<double, double>> &table) const;
 
     /// Position of the upper punch face at time @p t (mm).
     double
@@ -410,10 +427,11 @@ namespace densify
     std::vector<double> cell_volume_weights;
     /// The barrier against crushed cells (Mesh/Cell volume barrier), per
     /// particle the material's bulk modulus; off without nodal averaging.
-    CellVolumeBarrier                      cell_volume_barrier;
-    double                                 upper_initial = 0.;
-    std::vector<std::pair<double, double>> punch_table;
-    double                                 h_min = 0.;
+    CellVolumeBarrier cell_volume_barrier;
+    double            upper_initial = 0.;
+    /// Where the upper punch is: its displacement and force histories.
+    PunchControl punch_control;
+    double       h_min = 0.;
 
     parallel::shared::Triangulation<3> triangulation;
     std::unique_ptr<FESystem<3>>       fe;

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <iomanip>
+#include <stdexcept>
+#include <string>
 
 namespace densify
 {
@@ -44,19 +46,37 @@ namespace densify
       solution.add(travel / last_travel, last_increment);
 
     double violation = 0.;
-    for (unsigned int aug = 0;; ++aug)
+    for (unsigned int solve = 0;; ++solve)
       {
-        // predictor margin: constraints within this increment's travel
-        const auto [n_newton, n_linear] =
-          newton.solve(problem, step, aug == 0 ? travel : 0., pseudo_transient);
-        counts.newton_iterations += n_newton;
-        counts.linear_iterations += n_linear;
-        violation = problem.evaluate_constraints();
-        if (violation <= control.gap_tolerance ||
-            aug == control.max_augmentations)
+        for (unsigned int aug = 0;; ++aug)
+          {
+            // predictor margin: constraints within this increment's travel
+            const auto [n_newton, n_linear] = newton.solve(
+              problem, step, aug == 0 ? travel : 0., pseudo_transient);
+            counts.newton_iterations += n_newton;
+            counts.linear_iterations += n_linear;
+            violation = problem.evaluate_constraints();
+            if (violation <= control.gap_tolerance ||
+                aug == control.max_augmentations)
+              break;
+            problem.update_multipliers();
+            ++counts.augmentations;
+          }
+        double scale = 1.;
+        if (problem.loads_reached(scale))
           break;
-        problem.update_multipliers();
-        ++counts.augmentations;
+        if (scale != 1.)
+          {
+            solution -= start;
+            solution *= scale;
+            solution += start;
+          }
+        if (solve + 1 == control.max_control_solves)
+          throw std::runtime_error(
+            "step " + std::to_string(step) +
+            ": the controlled load was not reached in " +
+            std::to_string(control.max_control_solves) +
+            " solves; try more steps (Time stepping/Number of steps)");
       }
     if (violation > control.gap_tolerance)
       out << "  warning: penetration " << violation

@@ -30,6 +30,22 @@ namespace densify
     virtual double
     set_loads(const double time, const double increment) = 0;
 
+    /**
+     * After a converged solve of an increment: true if every load that is
+     * controlled by its result (e.g. a punch that must carry a target force)
+     * has it; otherwise move that load for another solve of the same
+     * increment and return false, with @p scale the new load travel over
+     * the solved one (from the increment's start), which scales the
+     * increment of the solution into the next solve's start. Displacement
+     * control alone: true.
+     */
+    virtual bool
+    loads_reached(double &scale)
+    {
+      scale = 1.;
+      return true;
+    }
+
     /// Evaluate the constraints at the current solution (e.g. the contact
     /// forces); returns their largest violation (e.g. penetration, mm).
     virtual double
@@ -64,6 +80,8 @@ namespace densify
     double gap_tolerance = 1e-4;
     /// Most augmentations per increment.
     unsigned int max_augmentations = 20;
+    /// Most solves of one increment for a load control (loads_reached()).
+    unsigned int max_control_solves = 20;
     /// Newton iterations up to which an increment counts as easy (the next
     /// one may be twice as long, up to a step).
     unsigned int easy_newton_iterations = 10;

@@ -1,0 +1,140 @@
+// The upper punch's control: its displacement history and, within the times
+// of a force history, the travel that makes it carry the target force.
+#pragma once
+
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <utility>
+#include <vector>
+
+namespace densify
+{
+  /**
+   * Where the upper punch is at each time. Outside the force window (the
+   * times of the force history, (t_first, t_last]) the punch follows the
+   * displacement history; after the window, that history continues from
+   * where the force control left the punch (shifted by a constant), so the
+   * travel is continuous at both switches. Within the window, each move (an
+   * implicit increment or an explicit station) starts from the last
+   * accepted state (time, travel, force) and plans its end travel from the
+   * target force and the secant stiffness of the last two accepted states;
+   * the implicit method then corrects the travel by a bracketing secant
+   * (regula falsi) until the punch carries the target within the tolerance
+   * (correct()), the explicit method accepts the station as it came and
+   * corrects the next one. During a move the travel is linear in time.
+   */
+  class PunchControl
+  {
+  public:
+    /// Displacement control by @p displacement alone (s:mm, downward).
+    PunchControl(const std::vector<std::pair<double, double>> &displacement = {
+                   {0., 0.}});
+
+    /**
+     * @p displacement the downward travel against time (s:mm), @p force the
+     * target compressive force against time (s:N; empty: displacement
+     * control throughout), @p tolerance the relative force tolerance (of the
+     * larger of the target and the largest force so far), @p trial_travel
+     * the first move (mm) where no stiffness is known yet (before the first
+     * contact), @p max_speed the punch's largest speed under force control
+     * (mm/s): a target that needs more travel in a move is approached at
+     * it, as a servo press does.
+     */
+    PunchControl(const std::vector<std::pair<double, double>> &displacement,
+                 const std::vector<std::pair<double, double>> &force,
+                 const double                                  tolerance,
+                 const double                                  trial_travel,
+                 const double                                  max_speed);
+
+    /// Whether a move that ends at @p t is force-controlled.
+    bool
+    force_controlled(const double t) const;
+
+    /// The target force at @p t (N; 0 outside the force history).
+    double
+    target(const double t) const;
+
+    /// The punch's downward travel at @p t (mm).
+    double
+    travel(const double t) const;
+
+    /// Start a move from the accepted state to the time @p t_end: plan its
+    /// end travel, closing the fraction @p gain of the force's gap to the
+    /// target by the secant stiffness (the explicit method, which cannot
+    /// correct a move, takes less than all of it against overshooting).
+    void
+    plan(const double t_end, const double gain = 1.);
+
+    /**
+     * After a converged solve of the planned move, whose punch carried
+     * @p force: true if the move is displacement-controlled, the force is
+     * the target's within the tolerance, or the move is as long as the
+     * largest speed allows and still short; otherwise plan another end travel
+     * for the same move (a bracketing secant) and return false, with
+     * @p scale the new move's length over the tried one's (in [0, 5]; 1 if
+     * the tried move was none): the increment of the solution scaled by it
+     * predicts the new solve's start.
+     */
+    bool
+    correct(const double force, double &scale);
+
+    /// Corrections of the current move so far.
+    unsigned int
+    n_corrections() const
+    {
+      return corrections;
+    }
+
+    /// Accept the planned move's end, at which the punch carries @p force.
+    void
+    accept(const double force);
+
+    /// The checkpoint's state.
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &t0 &d0 &f0 &d_prev &has_prev &stiffness &offset &force_scale &t1
+        &d1;
+    }
+
+  private:
+    /// The longest move to the planned end time (mm).
+    double
+    max_move() const;
+
+    /// The displacement history's travel at @p t, shifted after the window.
+    double
+    displacement_travel(const double t) const;
+
+    std::vector<std::pair<double, double>> displacement;
+    std::vector<std::pair<double, double>> force;
+    double                                 tolerance    = 1e-3;
+    double                                 trial_travel = 0.;
+    double                                 max_speed    = 0.;
+
+    /// The accepted state: time, travel, force.
+    double t0 = 0., d0 = 0., f0 = 0.;
+    /// The travel of the accepted state before it.
+    double d_prev   = 0.;
+    bool   has_prev = false;
+    /// The last positive secant stiffness of two accepted states (N/mm;
+    /// 0: none yet).
+    double stiffness = 0.;
+    /// The shift of the displacement history after the window (mm).
+    double offset = 0.;
+    /// The largest force accepted so far (N).
+    double force_scale = 0.;
+    /// The planned move's end time and travel.
+    double t1 = 0., d1 = 0.;
+
+    /// The tries of the current move: the largest travel that carried less
+    /// than the target, the smallest that carried more, and the side the
+    /// last try fell on (regula falsi with the Illinois halving).
+    double       lo_d = 0., lo_f = 0., hi_d = 0., hi_f = 0.;
+    bool         has_lo = false, has_hi = false;
+    int          last_side   = 0;
+    unsigned int corrections = 0;
+  };
+} // namespace densify

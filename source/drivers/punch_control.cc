@@ -1,0 +1,219 @@
+// The upper punch's control by displacement and force histories.
+#include <densify/drivers/punch_control.h>
+#include <densify/parameters.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace densify
+{
+  namespace
+  {
+    /// Times closer than this (relative) are the same.
+    constexpr double time_epsilon = 1e-12;
+  } // namespace
+
+
+
+  PunchControl::PunchControl(
+    const std::vector<std::pair<double, double>> &displacement)
+    : PunchControl(displacement, {}, 1e-3, 0., 0.)
+  {}
+
+
+
+  PunchControl::PunchControl(
+    const std::vector<std::pair<double, double>> &displacement,
+    const std::vector<std::pair<double, double>> &force,
+    const double                                  tolerance,
+    const double                                  trial_travel,
+    const double                                  max_speed)
+    : displacement(displacement)
+    , force(force)
+    , tolerance(tolerance)
+    , trial_travel(trial_travel)
+    , max_speed(max_speed)
+    , d0(interpolate(displacement, 0.))
+    , d1(d0)
+  {}
+
+
+
+  bool
+  PunchControl::force_controlled(const double t) const
+  {
+    if (force.empty())
+      return false;
+    const double eps = time_epsilon * std::max(1., std::abs(t));
+    return t > force.front().first + eps && t <= force.back().first + eps;
+  }
+
+
+
+  double
+  PunchControl::target(const double t) const
+  {
+    return force.empty() ? 0. : interpolate(force, t);
+  }
+
+
+
+  double
+  PunchControl::displacement_travel(const double t) const
+  {
+    return interpolate(displacement, t) + offset;
+  }
+
+
+
+  double
+  PunchControl::travel(const double t) const
+  {
+    // a force-controlled move is linear in time from the accepted state;
+    // elsewhere the (shifted) displacement history
+    const double eps = time_epsilon * std::max(1., std::abs(t1));
+    if (t1 > t0 && force_controlled(t1) && t >= t0 - eps && t <= t1 + eps)
+      return d0 + (d1 - d0) * (t - t0) / (t1 - t0);
+    if (std::abs(t - t0) <= eps)
+      return d0;
+    return displacement_travel(t);
+  }
+
+
+
+  void
+  PunchControl::plan(const double t_end, const double gain)
+  {
+    t1          = t_end;
+    corrections = 0;
+    has_lo = has_hi = false;
+    last_side       = 0;
+    if (!force_controlled(t1))
+      {
+        d1 = displacement_travel(t1);
+        return;
+      }
+    // the accepted state is one end of the bracket: a move that stays there
+    // carries its force
+    const double target_force = target(t1);
+    if (f0 < target_force)
+      {
+        lo_d   = d0;
+        lo_f   = f0;
+        has_lo = true;
+      }
+    else if (f0 > target_force)
+      {
+        hi_d   = d0;
+        hi_f   = f0;
+        has_hi = true;
+      }
+    // the secant stiffness's prediction, no faster than the largest speed
+    double move = 0.;
+    if (stiffness > 0.)
+      move = gain * (target_force - f0) / stiffness;
+    else if (target_force != f0)
+      move = (target_force > f0 ? 1. : -1.) * trial_travel;
+    d1 = d0 + std::clamp(move, -max_move(), max_move());
+  }
+
+
+
+  bool
+  PunchControl::correct(const double f, double &scale)
+  {
+    scale = 1.;
+    if (!force_controlled(t1))
+      return true;
+    const double target_force = target(t1);
+    const double tol =
+      tolerance * std::max(std::abs(target_force), force_scale);
+    if (std::abs(f - target_force) <= tol)
+      return true;
+    // more travel, more force
+    const int side = f < target_force ? -1 : 1;
+    // at the largest speed and still short: the punch approaches the target
+    // at that speed
+    if ((d1 - d0) * -side >= max_move() * (1. - 1e-12))
+      return true;
+    ++corrections;
+    const double tried = d1;
+    if (side < 0 && (!has_lo || d1 > lo_d))
+      {
+        lo_d   = d1;
+        lo_f   = f;
+        has_lo = true;
+      }
+    if (side > 0 && (!has_hi || d1 < hi_d))
+      {
+        hi_d   = d1;
+        hi_f   = f;
+        has_hi = true;
+      }
+    if (has_lo && has_hi && hi_f > lo_f)
+      {
+        // regula falsi; an end kept twice in a row counts half (Illinois),
+        // so that the other end moves too
+        if (side == last_side)
+          {
+            if (side < 0)
+              hi_f = target_force + (hi_f - target_force) / 2.;
+            else
+              lo_f = target_force + (lo_f - target_force) / 2.;
+          }
+        d1 = lo_d + (target_force - lo_f) * (hi_d - lo_d) / (hi_f - lo_f);
+      }
+    else
+      {
+        // no bracket yet (e.g. before the first contact): the secant through
+        // the accepted state, at most four times this move's length further,
+        // else twice the move
+        const double direction = side < 0 ? 1. : -1.;
+        double       length    = std::abs(d1 - d0);
+        if (length < 1e-12 * std::max(1., std::abs(d0)))
+          length = trial_travel;
+        double next = d1 + direction * length;
+        if (std::abs(d1 - d0) > 0. && (f - f0) / (d1 - d0) > 0.)
+          {
+            const double secant =
+              d1 + (target_force - f) * (d1 - d0) / (f - f0);
+            if ((secant - d1) * direction > 0.)
+              next =
+                d1 + direction * std::min(std::abs(secant - d1), 4. * length);
+          }
+        d1 = next;
+      }
+    d1        = std::clamp(d1, d0 - max_move(), d0 + max_move());
+    last_side = side;
+    // the new move against the tried one, from the accepted state
+    if (std::abs(tried - d0) > 1e-12 * std::max(1., std::abs(d0)))
+      scale = std::clamp((d1 - d0) / (tried - d0), 0., 5.);
+    return false;
+  }
+
+
+
+  double
+  PunchControl::max_move() const
+  {
+    return max_speed * (t1 - t0);
+  }
+
+
+
+  void
+  PunchControl::accept(const double f)
+  {
+    if (std::abs(d1 - d0) > 1e-12 * std::max(1., std::abs(d0)) &&
+        (f - f0) / (d1 - d0) > 0.)
+      stiffness = (f - f0) / (d1 - d0);
+    d_prev   = d0;
+    has_prev = true;
+    if (force_controlled(t1))
+      offset = d1 - interpolate(displacement, t1);
+    t0          = t1;
+    d0          = d1;
+    f0          = f;
+    force_scale = std::max(force_scale, std::abs(f));
+  }
+} // namespace densify

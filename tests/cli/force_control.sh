@@ -1,0 +1,92 @@
+# Force control of the upper punch (Tools/Upper punch/Force history;
+# doc/theory.md, "Force control"). The three elastic spheres of
+# prm/default.prm in 10 steps of 0.1 s: the displacement history (0.002 mm
+# a step) to t = 0.4, then the force history 0.4:100, 0.6:150, 0.8:150 N
+# (targets 125, 150, 150, 150 N at steps 5-8), then the displacement
+# history again, with Maximum speed = 1 mm/s (0.1 mm a step: never
+# reached here). Implicit, on 1 and 2 ranks.
+#   1. Steps 5-8 carry their target within Force tolerance (1e-3 of the
+#      larger of the target and the largest force so far).
+#   2. While the target holds (steps 6-8), the punch stays where it is
+#      (elastic spheres: the same force at the same place, to 1e-9 mm).
+#   3. After the window the displacement history goes on from where the
+#      force control left the punch: 0.002 mm a step, no jump.
+#   4. 1 and 2 ranks agree (forces to 1e-6, travel to 1e-9 mm).
+#   5. With the default Maximum speed (the displacement history's, 0.02
+#      mm/s: 0.002 mm a step) the target of step 5 needs more travel than
+#      that: the punch moves by exactly 0.002 mm and carries less than 125 N;
+#      by step 7 it has caught up with the held 150 N.
+#   6. Bad input stops with exit 2 and one line naming the parameter: a
+#      force and a pressure history together, a negative force, a pressure
+#      without the die.
+set -u
+cd "$WORK_DIR"
+fails=0
+control=(--set "Output/Interval=0" --set "Time stepping/Number of steps=10"
+  --set "Tools/Upper punch/Force history=0.4:100, 0.6:150, 0.8:150")
+fast=(--set "Tools/Upper punch/Maximum speed=1")
+scene="$SOURCE_DIR/prm/default.prm"
+"$DENSIFY" "$scene" "${control[@]}" "${fast[@]}" --set "Output/Directory=one" > one.log 2>&1 ||
+  { echo "FAIL 1 rank"; tail -n 5 one.log; fails=$((fails + 1)); }
+"$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${control[@]}" "${fast[@]}" \
+  --set "Output/Directory=two" > two.log 2>&1 ||
+  { echo "FAIL 2 ranks"; tail -n 5 two.log; fails=$((fails + 1)); }
+for run in one two; do
+  awk -F, -v run=$run 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+    { d[$1] = $c["punch_displacement"]; f[$1] = $c["upper_punch_force"]
+      if (f[$1] > fmax) fmax = f[$1] }
+    function abs(x) { return x < 0 ? -x : x }
+    END {
+      split("125 150 150 150", target, " ")
+      for (k = 1; k <= 4; ++k) {
+        s = k + 4; scale = target[k] > fmax ? target[k] : fmax
+        if (abs(f[s] - target[k]) > 1e-3 * scale) {
+          print "FAIL " run " step " s ": " f[s] " N, target " target[k]; bad++ } }
+      for (s = 7; s <= 8; ++s) if (abs(d[s] - d[6]) > 1e-9) {
+        print "FAIL " run " the held punch moved: " d[6] " -> " d[s] " mm"; bad++ }
+      for (s = 9; s <= 10; ++s) if (abs(d[s] - d[s - 1] - 0.002) > 1e-9) {
+        print "FAIL " run " step " s " moved " d[s] - d[s - 1] " mm, not 0.002"; bad++ }
+      printf "%s: forces at steps 5-8 %.6g %.6g %.6g %.6g N, travel %.6g mm held, then +%.6g +%.6g mm\n",
+        run, f[5], f[6], f[7], f[8], d[6], d[9] - d[8], d[10] - d[9]
+      exit bad > 0 }' $run/statistics.csv || fails=$((fails + 1))
+done
+paste -d, one/statistics.csv two/statistics.csv | awk -F, 'NR == 1 { n = NF / 2
+    for (i = 1; i <= n; ++i) c[$i] = i; next }
+  function abs(x) { return x < 0 ? -x : x }
+  { a = c["upper_punch_force"]; b = c["punch_displacement"]
+    if (abs($a - $(a + n)) > 1e-6 * (1 + abs($a)) || abs($b - $(b + n)) > 1e-9) {
+      print "FAIL ranks differ at step " $1 ": " $a " / " $(a + n) " N, " $b " / " $(b + n) " mm"; bad++ } }
+  END { if (!bad) print "1 and 2 ranks agree"; exit bad > 0 }' || fails=$((fails + 1))
+
+"$DENSIFY" "$scene" "${control[@]}" --set "Output/Directory=slow" > slow.log 2>&1 ||
+  { echo "FAIL the default speed"; tail -n 5 slow.log; fails=$((fails + 1)); }
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { d[$1] = $c["punch_displacement"]; f[$1] = $c["upper_punch_force"] }
+  function abs(x) { return x < 0 ? -x : x }
+  END {
+    if (abs(d[5] - d[4] - 0.002) > 1e-9 || !(f[5] < 125 * (1 - 1e-3))) {
+      print "FAIL at the default speed step 5 moved " d[5] - d[4] " mm to " f[5] " N"; bad++ }
+    if (abs(f[7] - 150) > 0.15) { print "FAIL at the default speed step 7 carries " f[7] " N"; bad++ }
+    printf "default speed: step 5 moved %.6g mm to %.6g N (target 125), step 7 %.6g N\n", d[5] - d[4], f[5], f[7]
+    exit bad > 0 }' slow/statistics.csv || fails=$((fails + 1))
+
+bad_input() {
+  local expect="$1"
+  shift
+  "$DENSIFY" "$scene" --set "Output/Directory=bad" "$@" > bad.log 2>&1
+  local code=$?
+  if [ $code -ne 2 ] || ! grep -q "$expect" bad.log || [ "$(grep -c "error" bad.log)" -ne 1 ]; then
+    echo "FAIL bad input ($*): exit $code"; cat bad.log; fails=$((fails + 1))
+  else
+    echo "refused with exit 2: $(grep error bad.log)"
+  fi
+}
+bad_input "Tools/Upper punch/Pressure history: give either" \
+  --set "Tools/Upper punch/Force history=0.4:100, 0.8:150" \
+  --set "Tools/Upper punch/Pressure history=0.4:1, 0.8:2"
+bad_input "Tools/Upper punch/Force history: -5.* is negative" \
+  --set "Tools/Upper punch/Force history=0.4:100, 0.8:-5"
+bad_input "Tools/Upper punch/Pressure history: a mean stress needs the die" \
+  --set "Tools/Die wall/Enabled=false" \
+  --set "Tools/Upper punch/Pressure history=0.4:1, 0.8:2"
+exit $((fails > 0))
