@@ -727,10 +727,11 @@ namespace densify
         const ToolContactResult &contact = results.tools;
         // where the step left the punches (a force-controlled punch is
         // where its force took it)
-        const double upper   = upper_punch_position(time);
-        const double lower   = lower_punch_position(time);
-        s.punch_displacement = upper_initial - upper;
-        s.phase              = static_cast<unsigned int>(
+        const double upper         = upper_punch_position(time);
+        const double lower         = lower_punch_position(time);
+        s.punch_displacement       = upper_initial - upper;
+        s.lower_punch_displacement = lower - lower_punch_position(0.);
+        s.phase                    = static_cast<unsigned int>(
           press_phase(upper_before - upper,
                       lower - lower_punch_position(before)));
 
@@ -898,7 +899,8 @@ namespace densify
             pcout << compaction_summary(
               read_loading_curve(statistics_name,
                                  upper_initial - prm.tools.lower_position));
-          pcout << springback_summary(statistics_name);
+          pcout << springback_summary(statistics_name)
+                << ejection_summary(statistics_name);
         }
       catch (const std::exception &)
         {

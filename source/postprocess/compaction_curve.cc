@@ -253,6 +253,45 @@ namespace densify
 
 
   std::string
+  ejection_summary(const std::string &statistics_csv)
+  {
+    std::vector<std::vector<double>> c;
+    try
+      {
+        c = read_columns(statistics_csv,
+                         {"phase",
+                          "lower_punch_force",
+                          "lower_punch_displacement",
+                          "lower_punch_stress"});
+      }
+    catch (const std::exception &)
+      {
+        return "";
+      }
+    std::size_t peak = c[0].size(), first = peak, last = peak;
+    for (std::size_t i = 0; i < c[0].size(); ++i)
+      if (c[0][i] == static_cast<double>(PressPhase::eject))
+        {
+          if (first == c[0].size())
+            first = i;
+          last = i;
+          if (peak == c[0].size() || c[1][i] > c[1][peak])
+            peak = i;
+        }
+    if (peak == c[0].size())
+      return "";
+    std::ostringstream s;
+    s << std::setprecision(4) << "Ejection over a lower punch rise of "
+      << c[2][first > 0 ? first - 1 : first] << " -> " << c[2][last]
+      << " mm: peak force " << c[1][peak]
+      << " N (" << c[3][peak] << " MPa over the bore) at a rise of "
+      << c[2][peak] << " mm; " << c[1][last] << " N at the end\n";
+    return s.str();
+  }
+
+
+
+  std::string
   compaction_summary(const LoadingCurve &curve)
   {
     std::size_t largest = 0;

@@ -85,7 +85,7 @@ namespace densify
            "energy_balance,multiplier_work,continuations,min_cell_volume_ratio,"
            "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
            "radial_axial_ratio,compact_height,compact_diameter,"
-           "envelope_density,phase";
+           "envelope_density,phase,lower_punch_displacement";
   }
 
 
@@ -151,7 +151,8 @@ namespace densify
         << s.upper_punch_stress << ',' << s.lower_punch_stress << ','
         << s.die_wall_pressure << ',' << s.radial_axial_ratio << ','
         << s.compact_height << ',' << s.compact_diameter << ','
-        << s.envelope_density << ',' << s.phase << '\n';
+        << s.envelope_density << ',' << s.phase << ','
+        << s.lower_punch_displacement << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

@@ -15,7 +15,10 @@
 #      below the one in the die at full load (springback), and the run's
 #      springback line measures the compact the unloading left, before the
 #      ejection.
-#   4. A run stopped in the ejection phase (--stop-after) and resumed ends
+#   4. The run's ejection line names the largest lower punch force of the
+#      eject rows and the lower punch's rise at it (lower_punch_displacement,
+#      which rises by 0.1 mm a step while it ejects).
+#   5. A run stopped in the ejection phase (--stop-after) and resumed ends
 #      with the rows of the uninterrupted run (all but the wall times).
 set -u
 cd "$WORK_DIR"
@@ -42,6 +45,10 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
       dev = (F - mu_N) / mu_N; if (dev < 0) dev = -dev
       if (dev > worst) worst = dev; checked++ }
     if (ph == 3 && $c["die_wall_radial_force"] > radial_max) radial_max = $c["die_wall_radial_force"]
+    if (ph == 3 && $c["lower_punch_force"] > peak) { peak = $c["lower_punch_force"]; rise = $c["lower_punch_displacement"] }
+    if (ph == 3 && last_rise != "" && ($c["lower_punch_displacement"] - last_rise - 0.1)^2 > 1e-18) {
+      print "FAIL the lower punch rose " $c["lower_punch_displacement"] - last_rise " mm at step " $1; bad++ }
+    if (ph == 3) last_rise = $c["lower_punch_displacement"]
     end_density = $c["envelope_density"] }
   END {
     for (p = 0; p < 4; ++p) if (!seen[p]) { print "FAIL no phase " p; bad++ }
@@ -52,9 +59,13 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     printf "ejection force against 0.2 x the radial force: largest deviation %.3g %% over %d steps\n", 100 * worst, checked
     printf "envelope density %.4f at full load, %.4f after the ejection\n", full, end_density
     printf "axial %.4g %%\n", 100 * (h_unloaded - h_full) / h_full
+    printf "ejection peak %.4g N at a rise of %.4g mm\n", peak, rise
     exit bad > 0 }' whole/statistics.csv > rows.txt || fails=$((fails + 1))
 cat rows.txt
 axial=$(awk '/^axial/ { print $2 }' rows.txt)
+peak=$(awk '/^ejection peak/ { print $3 " N (.*) at a rise of " $9 " mm" }' rows.txt)
+grep "^Ejection" whole.log | grep -q "peak force $peak" ||
+  { echo "FAIL the ejection line is not the eject rows' peak ($peak)"; grep "^Ejection" whole.log; fails=$((fails + 1)); }
 grep "Springback" whole.log | grep -q "axial $axial %" ||
   { echo "FAIL the springback line is not the unloaded rows' ($axial %)"; fails=$((fails + 1)); }
 

@@ -94,6 +94,8 @@ namespace densify
     double compact_height = 0., compact_diameter = 0., envelope_density = 0.;
     /// The press cycle's phase over the step, as a number (PressPhase).
     unsigned int phase = 0;
+    /// The lower punch's rise from its start (mm; the ejection's travel).
+    double lower_punch_displacement = 0.;
   };
 
   /// The phase of a press cycle in a step; its number is the statistics.csv
