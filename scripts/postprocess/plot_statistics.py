@@ -14,6 +14,9 @@ not matter) and writes into OUTPUT_DIR (or --out):
                (MPa), and the Heckel plot ln(1/(1 - D)) against it with the
                line Densify's summary fits over the upper half of the
                pressure range (only for runs with a die and both punches)
+  ejection.png the ejection curve of a press cycle: the lower punch's force
+               (N) against its rise (mm) over the rows in the phase eject
+               (only for runs that eject)
 
 Stroke is the column punch_displacement (downward travel of the upper
 punch). relative_density is nan when the scene has no die; the density plot
@@ -153,6 +156,38 @@ def plot_compaction(directory, out_dir):
     return "compaction.png"
 
 
+def plot_ejection(directory, out_dir):
+    """Write ejection.png; returns its name, or None if no row ejects (or
+    the statistics.csv has no phase or lower punch rise)."""
+    rows = read_csv(output_file(directory, "statistics.csv"))
+    if "phase" not in rows[0] or "lower_punch_displacement" not in rows[0]:
+        return None
+    eject = [r for r in rows if to_float(r["phase"]) == 3]
+    if not eject:
+        return None
+    matplotlib = require("matplotlib", "python3-matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rise = [to_float(r["lower_punch_displacement"]) for r in eject]
+    force = [to_float(r["lower_punch_force"]) for r in eject]
+    fig, ax = plt.subplots(figsize=(6, 4.5), dpi=120)
+    ax.plot(rise, force, "o-", markersize=3)
+    peak = max(range(len(force)), key=lambda i: force[i])
+    ax.annotate(f"peak {force[peak]:.4g} N", (rise[peak], force[peak]),
+                textcoords="offset points", xytext=(5, 5))
+    ax.set_xlabel("lower punch rise (mm)")
+    ax.set_ylabel("lower punch force (N)")
+    ax.set_ylim(bottom=0)
+    ax.ticklabel_format(useOffset=False)
+    ax.set_title("Ejection")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "ejection.png"))
+    plt.close(fig)
+    return "ejection.png"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("directory", help="Densify output directory (Output/Directory)")
@@ -164,11 +199,12 @@ def main():
         os.makedirs(out_dir, exist_ok=True)
         write_csv(curves, os.path.join(out_dir, "curves.csv"))
         plot(curves, out_dir)
-        compaction = plot_compaction(args.directory, out_dir)
+        extras = [name for name in (plot_compaction(args.directory, out_dir),
+                                    plot_ejection(args.directory, out_dir)) if name]
     except PostprocessError as exc:
         fail(str(exc))
     n = len(curves["stroke_mm"])
-    extra = f", {compaction}" if compaction else ""
+    extra = "".join(f", {name}" for name in extras)
     print(f"wrote curves.csv, density.png, forces.png{extra} ({n} steps) into {out_dir}")
 
 

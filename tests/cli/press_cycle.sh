@@ -18,6 +18,8 @@
 #   4. The run's ejection line names the largest lower punch force of the
 #      eject rows and the lower punch's rise at it (lower_punch_displacement,
 #      which rises by 0.1 mm a step while it ejects).
+#      plot_statistics.py draws that curve (ejection.png; needs Debian's
+#      python3-matplotlib, which scripts/setup.sh installs).
 #   5. A run stopped in the ejection phase (--stop-after) and resumed ends
 #      with the rows of the uninterrupted run (all but the wall times).
 set -u
@@ -66,6 +68,9 @@ axial=$(awk '/^axial/ { print $2 }' rows.txt)
 peak=$(awk '/^ejection peak/ { print $3 " N (.*) at a rise of " $9 " mm" }' rows.txt)
 grep "^Ejection" whole.log | grep -q "peak force $peak" ||
   { echo "FAIL the ejection line is not the eject rows' peak ($peak)"; grep "^Ejection" whole.log; fails=$((fails + 1)); }
+/usr/bin/python3 "$SOURCE_DIR/scripts/postprocess/plot_statistics.py" whole --out plots > plots.log 2>&1 &&
+  [ "$(head -c 4 plots/ejection.png | tail -c 3)" = "PNG" ] ||
+  { echo "FAIL plot_statistics.py drew no ejection.png"; cat plots.log; fails=$((fails + 1)); }
 grep "Springback" whole.log | grep -q "axial $axial %" ||
   { echo "FAIL the springback line is not the unloaded rows' ($axial %)"; fails=$((fails + 1)); }
 
