@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Everything scripts/postprocess/ makes of one run, into its output directory:
-# density.png, forces.png, curves.csv (plot_statistics.py), the per-particle
+# density.png, forces.png, curves.csv, and with a die compaction.png and for
+# a press cycle that ejects ejection.png (plot_statistics.py), the per-particle
 # table of the last output step (particle_table.py), view_top.png and
 # view_oblique.png coloured by plastic strain (render.py), then the summary
 # (summary.py). Usage: bash scripts/postprocess/report.sh OUTPUT_DIR
