@@ -149,7 +149,8 @@ namespace densify
         .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)];
     if (punch_control.correct(force, scale))
       return true;
-    apply_loads(load_time, 0.);
+    // the same increment, from the committed time
+    apply_loads(load_time, load_time - current_time);
     return false;
   }
 
