@@ -343,7 +343,9 @@ namespace densify
       {
         boost::archive::binary_iarchive archive(in);
         archive                        &header;
-        if (header.version != checkpoint_version)
+        // format 6 lacks only the punch control's state, which a run of
+        // that densify (displacement control only) left at its start
+        if (header.version != checkpoint_version && header.version != 6)
           throw InputError(
             "--resume: checkpoint '" + file.string() + "' has format version " +
             std::to_string(header.version) +
@@ -383,7 +385,9 @@ namespace densify
         archive &step &current_time &current_upper &next_increment
           &last_punch_increment &wall &solution_values &increment_values
             &pvd_records &dynamics &explicit_work &factors &calibration
-              &calibrated_bound &mass_updates &mode &n_explicit &punch_control;
+              &calibrated_bound &mass_updates &mode &n_explicit;
+        if (header.version >= 7)
+          archive &punch_control;
         for (ForceTerm *term : force_terms())
           term->read_checkpoint(archive);
       }
