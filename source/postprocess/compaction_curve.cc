@@ -283,9 +283,9 @@ namespace densify
     std::ostringstream s;
     s << std::setprecision(4) << "Ejection over a lower punch rise of "
       << c[2][first > 0 ? first - 1 : first] << " -> " << c[2][last]
-      << " mm: peak force " << c[1][peak]
-      << " N (" << c[3][peak] << " MPa over the bore) at a rise of "
-      << c[2][peak] << " mm; " << c[1][last] << " N at the end\n";
+      << " mm: peak force " << c[1][peak] << " N (" << c[3][peak]
+      << " MPa over the bore) at a rise of " << c[2][peak] << " mm; "
+      << c[1][last] << " N at the end\n";
     return s.str();
   }
 
