@@ -492,70 +492,6 @@ namespace densify
 
 
 
-  std::vector<ParticleMeasure>
-  Simulator::measure_particles() const
-  {
-    TrilinosWrappers::MPI::Vector ghosted(locally_owned,
-                                          locally_relevant,
-                                          comm);
-    ghosted = solution;
-    return densify::measure_particles(dof_handler,
-                                      *mapping,
-                                      prm.mesh.degree,
-                                      ghosted,
-                                      particles,
-                                      particle_material,
-                                      comm);
-  }
-
-
-
-  std::vector<double>
-  Simulator::particle_volumes() const
-  {
-    std::vector<double> volume;
-    for (const ParticleMeasure &m : measure_particles())
-      volume.push_back(m.volume);
-    return volume;
-  }
-
-
-
-  std::vector<Tensor<1, 3>>
-  Simulator::particle_mean_displacements() const
-  {
-    std::vector<Tensor<1, 3>> mean;
-    for (const ParticleMeasure &m : measure_particles())
-      mean.push_back(m.mean_displacement);
-    return mean;
-  }
-
-
-
-  void
-  Simulator::write_graphics(const unsigned int step, const double time)
-  {
-    TimerOutput::Scope t(timer, "Output: graphics");
-    update_ghosts();
-    graphics.write(step,
-                   time,
-                   dof_handler,
-                   *mapping,
-                   prm.mesh.degree,
-                   solution_ghosted,
-                   particle_material,
-                   continuum->has_history() ? &continuum->committed() : nullptr,
-                   continuum->states_per_cell(),
-                   continuum->fbar(),
-                   tool_contact.get(),
-                   particle_contact.get(),
-                   effects.any_friction(),
-                   prm.output.directory,
-                   comm);
-  }
-
-
-
   void
   Simulator::setup()
   {
@@ -756,10 +692,18 @@ namespace densify
         for (const unsigned int n : partners)
           s.contact_pairs += n;
         s.contact_pairs /= 2;
+        s.coordination_number = 2. * s.contact_pairs / particles.size();
+        s.contact_area_fraction =
+          2. * results.particles.contact_area /
+          particle_surface_area(dof_handler, solution_ghosted);
         const std::vector<double> die_force =
           particle_tool_forces(ToolKind::die_wall);
         s.pole_force = pole_springs ? pole_springs->force() : 0.;
-        const std::vector<ParticleMeasure> measures = measure_particles();
+        std::vector<ParticleMeasure> measures;
+        {
+          TimerOutput::Scope t(timer, "Output: particle measures");
+          measures = measure_particles(true);
+        }
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
         // what rank 0 cannot write (e.g. a full disk) ends the run on every
@@ -815,7 +759,7 @@ namespace densify
 
         if (prm.output.interval > 0 &&
             (step % prm.output.interval == 0 || step == n_steps))
-          write_graphics(step, time);
+          write_graphics(step, time, measures);
 
         s.step_seconds = step_timer.wall_time();
         s.wall_seconds = wall_before + wall.wall_time();
@@ -899,7 +843,8 @@ namespace densify
             pcout << compaction_summary(
               read_loading_curve(statistics_name,
                                  upper_initial - prm.tools.lower_position));
-          pcout << springback_summary(statistics_name)
+          pcout << contact_summary(statistics_name)
+                << springback_summary(statistics_name)
                 << ejection_summary(statistics_name);
         }
       catch (const std::exception &)
@@ -911,24 +856,5 @@ namespace densify
           << prm.output.directory << "/" << std::endl;
     timer.print_summary();
     return true;
-  }
-
-
-  void
-  Simulator::warn_cell_volume(const unsigned int        step,
-                              const SmallestCellVolume &smallest)
-  {
-    // once per run: the ratio stays low once a cell has collapsed
-    if (cell_volume_warned || !(smallest.ratio < 0.2))
-      return;
-    cell_volume_warned = true;
-    pcout << "  warning: a cell's volume fell to V/V0 = "
-          << std::setprecision(3) << smallest.ratio << " (below 0.2) at step "
-          << step << " in particle " << smallest.particle << " at ("
-          << smallest.centre
-          << ") mm (reference position; printed once, statistics.csv has "
-             "min_cell_volume_ratio of every step): its forces are biased; "
-             "raise Mesh/Cell volume barrier from "
-          << prm.mesh.cell_volume_barrier << std::endl;
   }
 } // namespace densify

@@ -292,6 +292,7 @@ namespace densify
     sum.tools.n_slip              = contact.tools.n_slip;
     sum.particles.n_active        = contact.particles.n_active;
     sum.particles.n_slip          = contact.particles.n_slip;
+    sum.particles.contact_area    = contact.particles.contact_area;
     interval_weight[0] += dt;
     interval_weight[1] += dt * scene_time;
     interval_weight[2] += dt * scene_time * scene_time;

@@ -3,9 +3,13 @@
 
 #include <densify/utilities.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace densify
@@ -77,5 +81,36 @@ namespace densify
     if (!no_size)
       fs::resize_file(filename, before, ignored);
     return error;
+  }
+
+
+
+  void
+  extend_csv_columns(const std::string &filename, const std::string &header)
+  {
+    std::vector<std::string> lines;
+    {
+      std::ifstream in(filename);
+      for (std::string line; std::getline(in, line);)
+        lines.push_back(line);
+    }
+    if (lines.empty() || lines[0] == header ||
+        header.compare(0, lines[0].size() + 1, lines[0] + ",") != 0)
+      return;
+    const auto fields = [](const std::string &line) {
+      return std::count(line.begin(), line.end(), ',') + 1;
+    };
+    const long    added = fields(header) - fields(lines[0]);
+    std::ofstream out(filename, std::ios::trunc);
+    out << header << '\n';
+    for (std::size_t i = 1; i < lines.size(); ++i)
+      {
+        out << lines[i];
+        for (long k = 0; k < added; ++k)
+          out << ",nan";
+        out << '\n';
+      }
+    if (!out)
+      throw std::runtime_error("Output/Directory: " + write_error(filename));
   }
 } // namespace densify

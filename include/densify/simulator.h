@@ -192,9 +192,11 @@ namespace densify
     particle_mean_displacements() const;
 
   private:
-    /// Measure every particle (one pass over the cells; on every rank).
+    /// Measure every particle (one pass over the cells; on every rank),
+    /// @p with_stress its mean stresses too (a second pass, which evaluates
+    /// the material).
     std::vector<ParticleMeasure>
-    measure_particles() const;
+    measure_particles(const bool with_stress = false) const;
 
     void
     setup_particles();
@@ -314,9 +316,12 @@ namespace densify
     double
     lower_punch_position(const double t) const;
 
-    /// Write the .pvtu of this step and rewrite the .pvd.
+    /// Write the .pvtu of this step and rewrite the .pvd, with the
+    /// particles' mean stresses of @p measures.
     void
-    write_graphics(const unsigned int step, const double time);
+    write_graphics(const unsigned int                  step,
+                   const double                        time,
+                   const std::vector<ParticleMeasure> &measures);
 
     /**
      * Write the state at the end of load step @p step (solution, last

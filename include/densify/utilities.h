@@ -63,4 +63,15 @@ namespace densify
   append_or_roll_back(std::ofstream     &file,
                       const std::string &filename,
                       const std::string &text);
+
+  /**
+   * A resumed run appends to the table @p filename (comma-separated, a
+   * header line first): if its header is an older one (a prefix of
+   * @p header: columns are only ever appended), rewrite the file with
+   * @p header and its rows padded with "nan" for the new columns, so that
+   * every row has the header's fields. Throws std::runtime_error
+   * ("Output/Directory: " and write_error()) if it cannot be rewritten.
+   */
+  void
+  extend_csv_columns(const std::string &filename, const std::string &header);
 } // namespace densify

@@ -17,6 +17,9 @@ not matter) and writes into OUTPUT_DIR (or --out):
   ejection.png the ejection curve of a press cycle: the lower punch's force
                (N) against its rise (mm) over the rows in the phase eject
                (only for runs that eject)
+  contacts.png the mean coordination number and the contact area fraction
+               (%) against relative density (only for runs in which
+               particles touch, with a die)
 
 Stroke is the column punch_displacement (downward travel of the upper
 punch). relative_density is nan when the scene has no die; the density plot
@@ -188,6 +191,42 @@ def plot_ejection(directory, out_dir):
     return "ejection.png"
 
 
+def plot_contacts(directory, out_dir):
+    """Write contacts.png (mean coordination number and contact area fraction
+    against relative density); returns its name, or None if no two particles
+    touch or the statistics.csv has no such columns or no density."""
+    rows = read_csv(output_file(directory, "statistics.csv"))
+    if "coordination_number" not in rows[0]:
+        return None
+    rows = [r for r in rows
+            if not math.isnan(to_float(r["coordination_number"]))
+            and not math.isnan(to_float(r["relative_density"]))]
+    if not any(to_float(r["coordination_number"]) > 0 for r in rows):
+        return None
+    matplotlib = require("matplotlib", "python3-matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    density = [100 * to_float(r["relative_density"]) for r in rows]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=120)
+    left.plot(density, [to_float(r["coordination_number"]) for r in rows],
+              "o-", markersize=3)
+    left.set_ylabel("mean coordination number")
+    left.set_title("Contacts per particle")
+    right.plot(density,
+               [100 * to_float(r["contact_area_fraction"]) for r in rows],
+               "o-", markersize=3)
+    right.set_ylabel("contact area fraction (%)")
+    right.set_title("Particle surface in contact")
+    for ax in (left, right):
+        ax.set_xlabel("relative density (%)")
+        ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out_dir, "contacts.png"))
+    plt.close(fig)
+    return "contacts.png"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("directory", help="Densify output directory (Output/Directory)")
@@ -200,7 +239,8 @@ def main():
         write_csv(curves, os.path.join(out_dir, "curves.csv"))
         plot(curves, out_dir)
         extras = [name for name in (plot_compaction(args.directory, out_dir),
-                                    plot_ejection(args.directory, out_dir)) if name]
+                                    plot_ejection(args.directory, out_dir),
+                                    plot_contacts(args.directory, out_dir)) if name]
     except PostprocessError as exc:
         fail(str(exc))
     n = len(curves["stroke_mm"])

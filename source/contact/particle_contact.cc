@@ -15,6 +15,7 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <array>
 #include <iterator>
 #include <limits>
 
@@ -535,8 +536,25 @@ namespace densify
             for (auto *v : {&post_p, &post_slip, &post_status, &post_weights})
               v->reinit(n_post);
           }
+        // the slave facet's current over its reference area (flat), and
+        // whether one of its points carries a pressure
+        double area_ratio      = 0.;
+        bool   face_in_contact = false;
         if (begin < end)
           {
+            const auto corner = [&](const unsigned int a) {
+              return slave.cell->vertex_index(slave.local_vertex[a]);
+            };
+            const auto area = [](const Tensor<1, 3> &e1,
+                                 const Tensor<1, 3> &e2) {
+              return cross_product_3d(e1, e2).norm();
+            };
+            area_ratio = area(x_now[corner(1)] - x_now[corner(0)],
+                              x_now[corner(2)] - x_now[corner(0)]) /
+                         area(slave.cell->vertex(slave.local_vertex[1]) -
+                                slave.cell->vertex(slave.local_vertex[0]),
+                              slave.cell->vertex(slave.local_vertex[2]) -
+                                slave.cell->vertex(slave.local_vertex[0]));
             if (plain)
               {
                 tables.values(k, *out.values, u_values);
@@ -731,6 +749,7 @@ namespace densify
                       JxW;
                   }
                 result.max_penetration = std::max(result.max_penetration, -g);
+                face_in_contact        = face_in_contact || p > 0.;
                 const bool predicted =
                   (p <= 0. && out.matrix != nullptr && g < out.tangent_margin);
                 if (p > 0. || predicted)
@@ -897,6 +916,10 @@ namespace densify
                   post_weights(i) += v;
                 }
           }
+        if (face_in_contact)
+          for (unsigned int q = 0; q < n_q; ++q)
+            result.contact_area += weight * area_ratio *
+                                   (plain ? tables.JxW(k, q) : fe_face->JxW(q));
         if (post_face)
           add_surface_field_values(post_indices,
                                    post_p,
@@ -906,14 +929,27 @@ namespace densify
                                    *out.sums);
       }
 
-    result.normal_force    = Utilities::MPI::sum(result.normal_force, comm);
-    result.friction_force  = Utilities::MPI::sum(result.friction_force, comm);
+    // one reduction for the sums (the counts are exact in doubles)
+    std::array<double, 8> sums{{result.normal_force,
+                                result.friction_force,
+                                result.friction_work,
+                                result.elastic_energy,
+                                result.multiplier_work,
+                                result.contact_area,
+                                static_cast<double>(result.n_active),
+                                static_cast<double>(result.n_slip)}};
+    Utilities::MPI::sum(ArrayView<const double>(sums.data(), sums.size()),
+                        comm,
+                        ArrayView<double>(sums.data(), sums.size()));
+    result.normal_force    = sums[0];
+    result.friction_force  = sums[1];
+    result.friction_work   = sums[2];
+    result.elastic_energy  = sums[3];
+    result.multiplier_work = sums[4];
+    result.contact_area    = sums[5];
+    result.n_active        = static_cast<unsigned int>(sums[6] + 0.5);
+    result.n_slip          = static_cast<unsigned int>(sums[7] + 0.5);
     result.max_penetration = Utilities::MPI::max(result.max_penetration, comm);
-    result.friction_work   = Utilities::MPI::sum(result.friction_work, comm);
-    result.elastic_energy  = Utilities::MPI::sum(result.elastic_energy, comm);
-    result.multiplier_work = Utilities::MPI::sum(result.multiplier_work, comm);
-    result.n_active        = Utilities::MPI::sum(result.n_active, comm);
-    result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
   }
 

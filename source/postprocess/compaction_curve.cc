@@ -292,6 +292,40 @@ namespace densify
 
 
   std::string
+  contact_summary(const std::string &statistics_csv)
+  {
+    std::vector<std::vector<double>> c;
+    try
+      {
+        c = read_columns(statistics_csv,
+                         {"punch_displacement",
+                          "relative_density",
+                          "coordination_number",
+                          "contact_area_fraction"});
+      }
+    catch (const std::exception &)
+      {
+        return "";
+      }
+    if (c[0].empty())
+      return "";
+    const std::size_t full =
+      std::max_element(c[0].begin(), c[0].end()) - c[0].begin();
+    if (!(c[2][full] > 0.))
+      return "";
+    std::ostringstream s;
+    s << std::setprecision(4) << "Contacts at the farthest stroke ("
+      << c[0][full] << " mm";
+    if (std::isfinite(c[1][full]))
+      s << ", " << 100 * c[1][full] << " % relative density";
+    s << "): mean coordination number " << c[2][full]
+      << ", contact area fraction " << 100 * c[3][full] << " %\n";
+    return s.str();
+  }
+
+
+
+  std::string
   compaction_summary(const LoadingCurve &curve)
   {
     std::size_t largest = 0;

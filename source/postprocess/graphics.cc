@@ -13,8 +13,8 @@
 
 #include <deal.II/numerics/data_out.h>
 
-#include <densify/assembly/nodal_averaging.h>
 #include <densify/postprocess/graphics.h>
+#include <densify/postprocess/material_points.h>
 #include <densify/utilities.h>
 
 #include <algorithm>
@@ -27,36 +27,6 @@
 
 namespace densify
 {
-  namespace
-  {
-    /// The symmetric four-point rule of a tetrahedron (exact for quadratics):
-    /// point k lies nearest corner k and carries a quarter of the volume, as
-    /// the corners of the nodal-averaged F-bar do in the residual.
-    Quadrature<3>
-    corner_quadrature()
-    {
-      const double a = (5. + 3. * std::sqrt(5.)) / 20.;
-      const double b = (5. - std::sqrt(5.)) / 20.;
-      return Quadrature<3>(std::vector<Point<3>>{Point<3>(b, b, b),
-                                                 Point<3>(a, b, b),
-                                                 Point<3>(b, a, b),
-                                                 Point<3>(b, b, a)},
-                           std::vector<double>(4, 1. / 24.));
-    }
-
-
-
-    /// Von Mises stress of the Cauchy stress belonging to P and F (MPa).
-    double
-    von_mises(const Tensor<2, 3> &P, const Tensor<2, 3> &F)
-    {
-      const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
-      const Tensor<2, 3> s =
-        sigma - trace(sigma) / 3. * unit_symmetric_tensor<3>();
-      return std::sqrt(1.5 * scalar_product(s, s));
-    }
-  } // namespace
-
 
 
   void
@@ -74,6 +44,7 @@ namespace densify
     const ToolContact                                  *tool_contact,
     const ParticleContact                              *particle_contact,
     const bool                                          friction,
+    const std::vector<ParticleMeasure>                 *measures,
     const std::string                                  &directory,
     const MPI_Comm                                      comm)
   {
@@ -94,100 +65,44 @@ namespace densify
          {&surface.pressure, &surface.slip, &surface.status, &surface.weights})
       v->reinit(post_owned, comm);
 
-    // With the nodal-averaged F-bar, Fbar and the history live at a cell's
-    // four corners, which carry V/4 each in the residual: one point nearest
-    // each corner with that weight. (deal.II 9.4's QGaussSimplex<3>(2) has
-    // six points of unequal weight; their nearest corners carried 0.90 to
-    // 1.07 times V/4, which biased the projected fields: the pressure
-    // integral of tests/cli/plastic_field.sh by -4.7 %.) Otherwise the
-    // history is per point of the assembly's rule.
-    const Quadrature<3> quadrature =
-      nodal_averaging ? corner_quadrature() :
-                        Quadrature<3>(QGaussSimplex<3>(degree + 1));
-    FEValues<3>                          fe_values(mapping,
-                          dof_handler.get_fe(),
-                          quadrature,
-                          update_gradients | update_JxW_values);
+    // the material points as the assembly sees them
+    MaterialPoints                       points(dof_handler,
+                          mapping,
+                          degree,
+                          solution,
+                          materials,
+                          history,
+                          history_per_cell,
+                          nodal_averaging);
+    const Quadrature<3>                 &quadrature = points.quadrature();
     FEValues<3>                          post_values(mapping,
                             post_fe,
                             quadrature,
                             update_values | update_JxW_values);
-    const FEValuesExtractors::Vector     u(0);
-    std::vector<Tensor<2, 3>>            grad_u(quadrature.size());
     std::vector<types::global_dof_index> post_dofs(post_fe.n_dofs_per_cell());
     Vector<double> cell_w(post_dofs.size()), cell_m(post_dofs.size()),
       cell_p(post_dofs.size()), cell_e(post_dofs.size());
-    Tensor<2, 3> P;
-    Tensor<4, 3> A;
-    // the reference-cell corner of largest barycentric weight at each point
-    std::vector<unsigned int> nearest_corner(quadrature.size());
-    for (unsigned int q = 0; q < quadrature.size(); ++q)
-      {
-        const Point<3>             &x = quadrature.point(q);
-        const std::array<double, 4> weight{
-          {1. - x[0] - x[1] - x[2], x[0], x[1], x[2]}};
-        nearest_corner[q] =
-          std::max_element(weight.begin(), weight.end()) - weight.begin();
-      }
-    const std::vector<double> j_bar =
-      nodal_averaging ?
-        nodal_averaging->vertex_volume_measures(solution, materials) :
-        std::vector<double>();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const typename DoFHandler<3>::active_cell_iterator post_cell(
             &triangulation, cell->level(), cell->index(), &post_dof_handler);
-          fe_values.reinit(cell);
           post_values.reinit(post_cell);
-          fe_values[u].get_function_gradients(solution, grad_u);
-          cell_w = 0;
-          cell_m = 0;
-          cell_p = 0;
-          cell_e = 0;
+          const std::vector<MaterialPointValues> &values = points.reinit(cell);
+          cell_w                                         = 0;
+          cell_m                                         = 0;
+          cell_p                                         = 0;
+          cell_e                                         = 0;
           for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-              // with the nodal-averaged F-bar the history is kept at the
-              // corners: take the corner nearest to the point, and the
-              // material's Fbar there (F alone would give the cell's own,
-              // locking volume change to the pressure)
-              const Material &material = *materials[cell->material_id()];
-              if (nodal_averaging)
-                {
-                  const bool   finite = material.finite_strain();
-                  const double j_a    = blended_volume_measure(
-                    j_bar[cell->vertex_index(nearest_corner[q])],
-                    finite ? determinant(F) : trace(F) - 2.,
-                    nodal_averaging->cell_volume_weight(cell->material_id()),
-                    finite);
-                  F = fbar_deformation(F, j_a, finite);
-                }
-              const unsigned int k =
-                cell->active_cell_index() * history_per_cell +
-                (nodal_averaging ? nearest_corner[q] : q);
-              MaterialState scratch;
-              material.evaluate(F,
-                                history != nullptr ? &(*history)[k] : nullptr,
-                                history != nullptr ? &scratch : nullptr,
-                                P,
-                                A);
-              const double       vm    = von_mises(P, F);
-              const Tensor<2, 3> sigma = P * transpose(F) / determinant(F);
-              const double       eps_p =
-                history != nullptr ?
-                        material.equivalent_plastic_strain((*history)[k]) :
-                        0.;
-              for (unsigned int i = 0; i < post_dofs.size(); ++i)
-                {
-                  const double v =
-                    post_values.shape_value(i, q) * post_values.JxW(q);
-                  cell_w(i) += v * vm;
-                  cell_m(i) += v;
-                  cell_p(i) += v * (-trace(sigma) / 3.);
-                  cell_e(i) += v * eps_p;
-                }
-            }
+            for (unsigned int i = 0; i < post_dofs.size(); ++i)
+              {
+                const double v =
+                  post_values.shape_value(i, q) * post_values.JxW(q);
+                cell_w(i) += v * values[q].von_mises;
+                cell_m(i) += v;
+                cell_p(i) += v * (-trace(values[q].sigma) / 3.);
+                cell_e(i) += v * values[q].plastic_strain;
+              }
           post_cell->get_dof_indices(post_dofs);
           vm_w.add(post_dofs, cell_w);
           vm_m.add(post_dofs, cell_m);
@@ -263,12 +178,20 @@ namespace densify
     pr_g     = pr_w;
     ep_g     = ep_w;
 
-    Vector<float> particle_id(triangulation.n_active_cells()),
-      rank(triangulation.n_active_cells());
+    const unsigned int n_cells = triangulation.n_active_cells();
+    Vector<float> particle_id(n_cells), rank(n_cells), mean_pressure(n_cells),
+      mean_von_mises(n_cells);
     for (const auto &cell : triangulation.active_cell_iterators())
       {
-        particle_id(cell->active_cell_index()) = cell->material_id();
-        rank(cell->active_cell_index())        = cell->subdomain_id();
+        const unsigned int c = cell->active_cell_index();
+        particle_id(c)       = cell->material_id();
+        rank(c)              = cell->subdomain_id();
+        if (measures != nullptr)
+          {
+            const ParticleMeasure &m = (*measures)[cell->material_id()];
+            mean_pressure(c)         = -trace(m.mean_stress) / 3.;
+            mean_von_mises(c)        = m.mean_von_mises;
+          }
       }
 
     DataOut<3> data_out;
@@ -292,6 +215,11 @@ namespace densify
       data_out.add_data_vector(post_dof_handler, ep_g, "plastic_strain");
     data_out.add_data_vector(particle_id, "particle_id");
     data_out.add_data_vector(rank, "mpi_rank");
+    if (measures != nullptr)
+      {
+        data_out.add_data_vector(mean_pressure, "particle_mean_pressure");
+        data_out.add_data_vector(mean_von_mises, "particle_mean_von_mises");
+      }
     data_out.build_patches(mapping, degree);
     const std::string dir = directory + "/";
     // a rank that cannot write (e.g. a full disk) stops every rank with the

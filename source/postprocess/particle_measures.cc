@@ -1,4 +1,4 @@
-// Measures of each particle, and the particles.csv writer.
+// Measures of each particle, its mean stress, and the particles.csv writer.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -97,11 +97,51 @@ namespace densify
 
 
 
+  void
+  measure_particle_stresses(const DoFHandler<3>          &dof_handler,
+                            MaterialPoints               &points,
+                            std::vector<ParticleMeasure> &measures,
+                            const MPI_Comm                comm)
+  {
+    // per particle: [0] current volume, [1] int von Mises, [2..10] int sigma
+    constexpr unsigned int n = 11;
+    std::vector<double>    sums(n * measures.size(), 0.);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          double *sum = &sums[n * cell->material_id()];
+          for (const MaterialPointValues &v : points.reinit(cell))
+            {
+              const double dv = v.volume_ratio * v.JxW;
+              sum[0] += dv;
+              sum[1] += v.von_mises * dv;
+              for (unsigned int d = 0; d < 3; ++d)
+                for (unsigned int e = 0; e < 3; ++e)
+                  sum[2 + 3 * d + e] += v.sigma[d][e] * dv;
+            }
+        }
+    Utilities::MPI::sum(sums, comm, sums);
+    for (unsigned int p = 0; p < measures.size(); ++p)
+      {
+        const double *sum = &sums[n * p];
+        if (!(sum[0] > 0.))
+          continue;
+        measures[p].mean_von_mises = sum[1] / sum[0];
+        for (unsigned int d = 0; d < 3; ++d)
+          for (unsigned int e = 0; e < 3; ++e)
+            measures[p].mean_stress[d][e] = sum[2 + 3 * d + e] / sum[0];
+      }
+  }
+
+
+
   ParticleTableWriter::ParticleTableWriter(const std::string &filename,
                                            const bool         append)
     : filename(filename)
-    , out(filename, append ? std::ios::app : std::ios::trunc)
   {
+    if (append)
+      extend_csv_columns(filename, header());
+    out.open(filename, append ? std::ios::app : std::ios::trunc);
     if (!append)
       {
         const std::string error =
@@ -119,7 +159,9 @@ namespace densify
     return "step,particle,material,volume,initial_volume,"
            "mean_displacement_x,mean_displacement_y,"
            "mean_displacement_z,rotation_x,rotation_y,"
-           "rotation_z,contact_partners,die_contact";
+           "rotation_z,contact_partners,die_contact,mean_pressure,"
+           "mean_von_mises,mean_stress_xx,mean_stress_yy,mean_stress_zz,"
+           "mean_stress_xy,mean_stress_yz,mean_stress_xz";
   }
 
 
@@ -134,13 +176,21 @@ namespace densify
   {
     std::ostringstream rows;
     for (unsigned int p = 0; p < particles.size(); ++p)
-      rows << step << ',' << p << ',' << particles[p].material << ','
-           << std::setprecision(10) << measures[p].volume << ','
-           << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
-           << ',' << measures[p].mean_displacement[1] << ','
-           << measures[p].mean_displacement[2] << ',' << measures[p].rotation[0]
-           << ',' << measures[p].rotation[1] << ',' << measures[p].rotation[2]
-           << ',' << partners[p] << ',' << (die_force[p] > 0 ? 1 : 0) << '\n';
+      {
+        const Tensor<2, 3> &stress = measures[p].mean_stress;
+        rows << step << ',' << p << ',' << particles[p].material << ','
+             << std::setprecision(10) << measures[p].volume << ','
+             << initial_volumes[p] << ',' << measures[p].mean_displacement[0]
+             << ',' << measures[p].mean_displacement[1] << ','
+             << measures[p].mean_displacement[2] << ','
+             << measures[p].rotation[0] << ',' << measures[p].rotation[1] << ','
+             << measures[p].rotation[2] << ',' << partners[p] << ','
+             << (die_force[p] > 0 ? 1 : 0) << ','
+             << -trace(measures[p].mean_stress) / 3. << ','
+             << measures[p].mean_von_mises << ',' << stress[0][0] << ','
+             << stress[1][1] << ',' << stress[2][2] << ',' << stress[0][1]
+             << ',' << stress[1][2] << ',' << stress[0][2] << '\n';
+      }
     return append_or_roll_back(out, filename, rows.str());
   }
 } // namespace densify

@@ -9,44 +9,6 @@
 
 namespace densify
 {
-  namespace
-  {
-    /**
-     * A resumed run appends to @p filename: if its header is an older one
-     * (a prefix of today's, columns are only ever appended), rewrite it with
-     * today's header and the rows padded with "nan" for the new columns, so
-     * that every row has the header's fields.
-     */
-    void
-    extend_columns(const std::string &filename)
-    {
-      std::vector<std::string> lines;
-      {
-        std::ifstream in(filename);
-        for (std::string line; std::getline(in, line);)
-          lines.push_back(line);
-      }
-      const std::string header = StatisticsWriter::header();
-      if (lines.empty() || lines[0] == header ||
-          header.compare(0, lines[0].size() + 1, lines[0] + ",") != 0)
-        return;
-      const auto fields = [](const std::string &line) {
-        return std::count(line.begin(), line.end(), ',') + 1;
-      };
-      const long    added = fields(header) - fields(lines[0]);
-      std::ofstream out(filename, std::ios::trunc);
-      out << header << '\n';
-      for (std::size_t i = 1; i < lines.size(); ++i)
-        {
-          out << lines[i];
-          for (long k = 0; k < added; ++k)
-            out << ",nan";
-          out << '\n';
-        }
-      if (!out)
-        throw std::runtime_error("Output/Directory: " + write_error(filename));
-    }
-  } // namespace
 
 
 
@@ -55,7 +17,7 @@ namespace densify
     : filename(filename)
   {
     if (append)
-      extend_columns(filename);
+      extend_csv_columns(filename, header());
     out.open(filename, append ? std::ios::app : std::ios::trunc);
     if (!out)
       throw std::runtime_error("Output/Directory: " + write_error(filename));
@@ -85,7 +47,8 @@ namespace densify
            "energy_balance,multiplier_work,continuations,min_cell_volume_ratio,"
            "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
            "radial_axial_ratio,compact_height,compact_diameter,"
-           "envelope_density,phase,lower_punch_displacement";
+           "envelope_density,phase,lower_punch_displacement,"
+           "coordination_number,contact_area_fraction";
   }
 
 
@@ -152,7 +115,8 @@ namespace densify
         << s.die_wall_pressure << ',' << s.radial_axial_ratio << ','
         << s.compact_height << ',' << s.compact_diameter << ','
         << s.envelope_density << ',' << s.phase << ','
-        << s.lower_punch_displacement << '\n';
+        << s.lower_punch_displacement << ',' << s.coordination_number << ','
+        << s.contact_area_fraction << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

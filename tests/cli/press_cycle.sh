@@ -21,7 +21,12 @@
 #      plot_statistics.py draws that curve (ejection.png; needs Debian's
 #      python3-matplotlib, which scripts/setup.sh installs).
 #   5. A run stopped in the ejection phase (--stop-after) and resumed ends
-#      with the rows of the uninterrupted run (all but the wall times).
+#      with the rows of the uninterrupted run (all but the wall times), in
+#      statistics.csv and in particles.csv (with the particles' mean
+#      stresses).
+#   6. The summary has the contact line at full load and plot_statistics.py
+#      draws contacts.png (coordination number and contact area fraction
+#      against density).
 set -u
 cd "$WORK_DIR"
 fails=0
@@ -71,6 +76,10 @@ grep "^Ejection" whole.log | grep -q "peak force $peak" ||
 /usr/bin/python3 "$SOURCE_DIR/scripts/postprocess/plot_statistics.py" whole --out plots > plots.log 2>&1 &&
   [ "$(head -c 4 plots/ejection.png | tail -c 3)" = "PNG" ] ||
   { echo "FAIL plot_statistics.py drew no ejection.png"; cat plots.log; fails=$((fails + 1)); }
+[ "$(head -c 4 plots/contacts.png 2>/dev/null | tail -c 3)" = "PNG" ] ||
+  { echo "FAIL plot_statistics.py drew no contacts.png"; cat plots.log; fails=$((fails + 1)); }
+grep -q "^Contacts at the farthest stroke (0.7 mm, .*): mean coordination number" whole.log ||
+  { echo "FAIL no contact line in the summary"; fails=$((fails + 1)); }
 grep "Springback" whole.log | grep -q "axial $axial %" ||
   { echo "FAIL the springback line is not the unloaded rows' ($axial %)"; fails=$((fails + 1)); }
 
@@ -83,7 +92,8 @@ stop=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { echo "FAIL the resumed run"; tail -n 5 part2.log; fails=$((fails + 1)); }
 strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_seconds" || $i == "step_seconds") skip[i] = 1 }
   { line = ""; for (i = 1; i <= NF; ++i) if (!skip[i]) line = line $i ","; print line }' "$1"; }
-if cmp -s <(strip whole/statistics.csv) <(strip parts/statistics.csv); then
+if cmp -s <(strip whole/statistics.csv) <(strip parts/statistics.csv) &&
+  cmp -s whole/particles.csv parts/particles.csv; then
   echo "stopped after step $stop (ejection) and resumed: the rows of the uninterrupted run"
 else
   echo "FAIL the resumed cycle differs from the uninterrupted one"

@@ -40,6 +40,10 @@ namespace densify
     double max_penetration = 0.;
     /// Number of slave quadrature points in contact, and of those slipping.
     unsigned int n_active = 0, n_slip = 0;
+    /// Current area in contact (mm^2; each contact once): the slave facets
+    /// of which a point carries a pressure, each whole, at its current area
+    /// (flat facets).
+    double contact_area = 0.;
     /// Number of candidate particle pairs of the broad phase.
     unsigned int n_candidate_pairs = 0;
     /// Friction work of the increment, as ToolContactResult::friction_work.

@@ -1,5 +1,6 @@
 // The compact's current envelope: how high and how wide the deformed
-// particles are, for springback and the envelope density.
+// particles are, for springback and the envelope density; and the particles'
+// current surface area.
 #pragma once
 
 #include <deal.II/lac/trilinos_vector.h>
@@ -32,4 +33,14 @@ namespace densify
   CompactEnvelope
   compact_envelope(const DoFHandler<3>                 &dof_handler,
                    const TrilinosWrappers::MPI::Vector &solution);
+
+  /**
+   * The particles' total current surface area (mm^2): every boundary face of
+   * the locally owned cells of @p dof_handler as the flat triangle through
+   * its deformed vertices (the vector element's vertex DoFs of the ghosted
+   * @p solution), summed over the ranks; the same result on every rank.
+   */
+  double
+  particle_surface_area(const DoFHandler<3>                 &dof_handler,
+                        const TrilinosWrappers::MPI::Vector &solution);
 } // namespace densify

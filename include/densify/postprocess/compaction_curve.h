@@ -141,4 +141,13 @@ namespace densify
    */
   std::string
   ejection_summary(const std::string &statistics_csv);
+
+  /**
+   * The packing at the farthest stroke of @p statistics_csv (the first row
+   * that reaches it): the relative density, the mean coordination number
+   * and the contact area fraction (%). "" if no two particles touch there
+   * or the file has no such columns.
+   */
+  std::string
+  contact_summary(const std::string &statistics_csv);
 } // namespace densify

@@ -12,6 +12,7 @@
 #include <densify/contact/tool_contact.h>
 #include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
+#include <densify/postprocess/particle_measures.h>
 
 #include <memory>
 #include <string>
@@ -33,7 +34,8 @@ namespace densify
    * strain (with a history) at the material points; the contact pressure
    * and, with friction, the accumulated slip and the stick/slip status on
    * the surface; the signed gap of each vertex to the nearest tool; the
-   * particle id and the MPI rank of each cell.
+   * particle id and the MPI rank of each cell, and its particle's mean
+   * pressure and mean von Mises stress.
    */
   class GraphicsWriter
   {
@@ -68,6 +70,10 @@ namespace densify
      *   nullptr without one.
      * @param friction Whether friction acts anywhere (the slip and
      *   stick_slip fields).
+     * @param measures Each particle's measures with its mean stresses
+     *   (measure_particle_stresses()), written as the cell fields
+     *   particle_mean_pressure and particle_mean_von_mises, or nullptr
+     *   (no such fields).
      * @param directory The output directory.
      * @param comm The communicator of the triangulation.
      */
@@ -85,6 +91,7 @@ namespace densify
           const ToolContact                                  *tool_contact,
           const ParticleContact                              *particle_contact,
           const bool                                          friction,
+          const std::vector<ParticleMeasure>                 *measures,
           const std::string                                  &directory,
           const MPI_Comm                                      comm);
 

@@ -1,5 +1,5 @@
 // Measures of each particle in the current state (volume, mean
-// displacement, rotation), and the particles.csv writer.
+// displacement, rotation, mean stress), and the particles.csv writer.
 #pragma once
 
 #include <deal.II/base/tensor.h>
@@ -12,6 +12,7 @@
 
 #include <densify/geometry/particles.h>
 #include <densify/material/material.h>
+#include <densify/postprocess/material_points.h>
 
 #include <fstream>
 #include <memory>
@@ -32,6 +33,15 @@ namespace densify
     /// Mean rigid rotation vector (rad; small-rotation measure): the
     /// w that best fits u = w x (X - centre) after the mean translation.
     Tensor<1, 3> rotation;
+    /// Mean Cauchy stress over the current volume (MPa; by
+    /// measure_particle_stresses(), else zero). By equilibrium it is the
+    /// sum of the contact forces' moments x (x) f over the volume, so it
+    /// vanishes for a free particle.
+    Tensor<2, 3> mean_stress;
+    /// Mean of the von Mises stress over the current volume (MPa): the
+    /// intensity of the stress the particle holds, also where the mean stress
+    /// vanishes (residual stress after ejection).
+    double mean_von_mises = 0.;
   };
 
   /**
@@ -54,16 +64,29 @@ namespace densify
     const MPI_Comm                                      comm);
 
   /**
+   * Add each particle's mean stress and mean von Mises stress to
+   * @p measures (index: material id of the cells, the particle): one pass
+   * over the locally owned cells of @p dof_handler through @p points, each
+   * point weighted by its current volume, summed over @p comm.
+   */
+  void
+  measure_particle_stresses(const DoFHandler<3>          &dof_handler,
+                            MaterialPoints               &points,
+                            std::vector<ParticleMeasure> &measures,
+                            const MPI_Comm                comm);
+
+  /**
    * Writes particles.csv: a header line, then per load step one row per
    * particle (volume, initial volume, mean displacement, rotation, contact
-   * partners, die contact), flushed at once so that the file is valid
-   * whenever a run stops.
+   * partners, die contact, mean stress), flushed at once so that the file is
+   * valid whenever a run stops.
    */
   class ParticleTableWriter
   {
   public:
     /// Open (truncate) @p filename and write the header; with @p append,
-    /// append rows to the existing file (a resumed run). Throws
+    /// append rows to the existing file (a resumed run; a file of an older
+    /// Densify gets today's header, its rows padded with nan). Throws
     /// std::runtime_error if the header cannot be written.
     ParticleTableWriter(const std::string &filename, const bool append);
 

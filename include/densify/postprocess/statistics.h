@@ -96,6 +96,12 @@ namespace densify
     unsigned int phase = 0;
     /// The lower punch's rise from its start (mm; the ejection's travel).
     double lower_punch_displacement = 0.;
+    /// Mean coordination number: twice the particle pairs in contact over
+    /// the number of particles (the tools not counted).
+    double coordination_number = 0.;
+    /// The share of the particles' current surface in contact with another
+    /// particle (flat facets; the tools not counted).
+    double contact_area_fraction = 0.;
   };
 
   /// The phase of a press cycle in a step; its number is the statistics.csv
