@@ -357,7 +357,37 @@ namespace densify
         "...' pairs (t in s, increasing; d in mm, positive raises it), "
         "linearly interpolated and constant beyond the last time. 0:0: the "
         "punch stays. Raising it with the upper punch withdrawn pushes the "
-        "compact out of the die (ejection; Tools/Die wall/Top).");
+        "compact out of the die (ejection; Tools/Die wall/Top). Within the "
+        "times of a Force history or Pressure history the force rules; "
+        "after them this history goes on from where the force control left "
+        "the punch.");
+      prm.add_parameter(
+        "Force history",
+        tools.lower_force,
+        "Target compressive (upward) force on the lower punch against time, "
+        "as 't:F, t:F, ...' pairs (t in s, increasing, within End time; F "
+        "in N, >= 0), linearly interpolated. Between its first and last "
+        "time the punch moves up or down to carry the target (force "
+        "control); before and after, Displacement history moves it. Empty: "
+        "displacement control throughout.");
+      prm.add_parameter(
+        "Pressure history",
+        tools.lower_pressure,
+        "The same as Force history, as the mean axial stress over the die's "
+        "bore, 't:p, ...' pairs (s:MPa); needs the die. Give either this or "
+        "Force history.");
+      prm.add_parameter(
+        "Force tolerance",
+        tools.lower_force_tolerance,
+        "Relative tolerance of the lower punch's force control, as the "
+        "upper punch's (> 0).");
+      prm.add_parameter(
+        "Maximum speed",
+        tools.lower_max_speed,
+        "Largest speed of the lower punch under force control, in mm/s "
+        "(>= 0), as the upper punch's. 0: the steepest segment of its "
+        "Displacement history (for a constant history, the gap between the "
+        "punches over End time).");
       prm.add_parameter("Friction coefficient",
                         tools.lower_friction,
                         "Coulomb coefficient between the particles and the "

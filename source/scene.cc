@@ -23,27 +23,33 @@ namespace densify
 {
   namespace
   {
-    /// The upper punch's target force table from Tools/Upper punch/Force
-    /// history or Pressure history (empty if neither is given).
+    /// A punch's target force table from Tools/@p punch/Force history or
+    /// Pressure history (empty if neither is given), with its @p tolerance
+    /// and @p max_speed checked.
     std::vector<std::pair<double, double>>
-    force_table(const Parameters &prm)
+    force_table(const Parameters  &prm,
+                const std::string &punch,
+                const std::string &force,
+                const std::string &pressure,
+                const double       tolerance,
+                const double       max_speed)
     {
-      const std::string &force       = prm.tools.upper_force;
-      const std::string &pressure    = prm.tools.upper_pressure;
-      const bool         by_force    = !Utilities::trim(force).empty();
-      const bool         by_pressure = !Utilities::trim(pressure).empty();
+      const std::string prefix      = "Tools/" + punch + "/";
+      const bool        by_force    = !Utilities::trim(force).empty();
+      const bool        by_pressure = !Utilities::trim(pressure).empty();
       if (by_force && by_pressure)
-        throw std::runtime_error(
-          "Tools/Upper punch/Pressure history: give either it or Force "
-          "history, not both");
+        throw std::runtime_error(prefix +
+                                 "Pressure history: give either it or Force "
+                                 "history, not both");
       if (!by_force && !by_pressure)
         return {};
       if (by_pressure && !prm.tools.die_enabled)
         throw std::runtime_error(
-          "Tools/Upper punch/Pressure history: a mean stress needs the die's "
-          "bore (Tools/Die wall/Enabled = true); give a Force history instead");
-      const std::string what = by_force ? "Tools/Upper punch/Force history" :
-                                          "Tools/Upper punch/Pressure history";
+          prefix +
+          "Pressure history: a mean stress needs the die's bore (Tools/Die "
+          "wall/Enabled = true); give a Force history instead");
+      const std::string what =
+        prefix + (by_force ? "Force history" : "Pressure history");
       std::vector<std::pair<double, double>> table =
         parse_table(by_force ? force : pressure, what);
       if (table.size() < 2)
@@ -64,14 +70,14 @@ namespace densify
             value *= numbers::PI / 4. * prm.tools.die_diameter *
                      prm.tools.die_diameter;
         }
-      if (!(prm.tools.max_speed >= 0.))
+      if (!(max_speed >= 0.))
         throw std::runtime_error(
-          "Tools/Upper punch/Maximum speed: give a speed >= 0 (mm/s; 0 takes "
-          "the displacement history's)");
-      if (!(prm.tools.force_tolerance > 0.))
-        throw std::runtime_error(
-          "Tools/Upper punch/Force tolerance: give a positive relative "
-          "tolerance (e.g. 1e-3)");
+          prefix + "Maximum speed: give a speed >= 0 (mm/s; 0 takes the "
+                   "displacement history's)");
+      if (!(tolerance > 0.))
+        throw std::runtime_error(prefix +
+                                 "Force tolerance: give a positive relative "
+                                 "tolerance (e.g. 1e-3)");
       return table;
     }
 
@@ -393,9 +399,20 @@ namespace densify
           throw std::runtime_error("Tools/Upper punch/Initial position: '" +
                                    init + "' is neither a number nor 'auto'");
         }
-    scene.punch_table = parse_table(prm.tools.upper_displacement,
+    scene.punch_table       = parse_table(prm.tools.upper_displacement,
                                     "Tools/Upper punch/Displacement history");
-    scene.force_table = force_table(prm);
+    scene.force_table       = force_table(prm,
+                                    "Upper punch",
+                                    prm.tools.upper_force,
+                                    prm.tools.upper_pressure,
+                                    prm.tools.force_tolerance,
+                                    prm.tools.max_speed);
+    scene.lower_force_table = force_table(prm,
+                                          "Lower punch",
+                                          prm.tools.lower_force,
+                                          prm.tools.lower_pressure,
+                                          prm.tools.lower_force_tolerance,
+                                          prm.tools.lower_max_speed);
 
     {
       const std::vector<Point<3>> b =

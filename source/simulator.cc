@@ -84,10 +84,11 @@ namespace densify
 
   double
   Simulator::force_control_speed(
-    const std::vector<std::pair<double, double>> &table) const
+    const std::vector<std::pair<double, double>> &table,
+    const double                                  max_speed) const
   {
-    if (prm.tools.max_speed > 0.)
-      return prm.tools.max_speed;
+    if (max_speed > 0.)
+      return max_speed;
     // the steepest segment of the displacement history
     double speed = 0.;
     for (unsigned int i = 1; i < table.size(); ++i)
@@ -109,15 +110,25 @@ namespace densify
     effects       = resolve_effects(prm, scene);
     particles     = std::move(scene.particles);
     upper_initial = scene.upper_initial;
-    punch_control = PunchControl(
-      scene.punch_table,
-      scene.force_table,
-      prm.tools.force_tolerance,
-      // before the first contact, a hundredth of the gap between the punches
-      0.01 * (upper_initial - prm.tools.lower_position),
-      force_control_speed(scene.punch_table));
+    // before the first contact, a force-controlled punch moves by a
+    // hundredth of the gap between the punches
+    const double trial = 0.01 * (upper_initial - prm.tools.lower_position);
+    punch_control =
+      PunchControl(scene.punch_table,
+                   scene.force_table,
+                   prm.tools.force_tolerance,
+                   trial,
+                   force_control_speed(scene.punch_table, prm.tools.max_speed));
+    lower_initial =
+      prm.tools.lower_position + interpolate(scene.lower_table, 0.);
+    lower_control =
+      PunchControl(scene.lower_table,
+                   scene.lower_force_table,
+                   prm.tools.lower_force_tolerance,
+                   trial,
+                   force_control_speed(scene.lower_table,
+                                       prm.tools.lower_max_speed));
     lateral_table    = std::move(scene.lateral_table);
-    lower_table      = std::move(scene.lower_table);
     die_top          = scene.die_top;
     scene_body_force = scene.body_force;
     body_force_table = std::move(scene.body_force_table);
@@ -293,7 +304,7 @@ namespace densify
     std::vector<RigidTool>   tools;
     std::vector<FrictionLaw> tool_laws;
     if (effects.has_tool(ToolKind::lower_punch))
-      tools.push_back({ToolKind::lower_punch, lower_punch_position(0.)});
+      tools.push_back({ToolKind::lower_punch, lower_initial});
     if (effects.has_tool(ToolKind::upper_punch))
       tools.push_back({ToolKind::upper_punch, upper_initial});
     if (effects.has_tool(ToolKind::die_wall))
@@ -429,7 +440,7 @@ namespace densify
   double
   Simulator::lower_punch_position(const double t) const
   {
-    return prm.tools.lower_position + interpolate(lower_table, t);
+    return prm.tools.lower_position + lower_control.travel(t);
   }
 
 
@@ -543,7 +554,7 @@ namespace densify
       if (has_density)
         pcout << "Initial relative density " << std::fixed
               << std::setprecision(2)
-              << 100 * density(v0, upper_initial - lower_punch_position(0.))
+              << 100 * density(v0, upper_initial - lower_initial)
               << " % (particle volume of the mesh " << std::setprecision(4)
               << v0 << " mm^3)" << std::defaultfloat << std::endl;
     }
@@ -617,6 +628,7 @@ namespace densify
         const double   time         = prm.time.end_time * step / n_steps;
         const double   before       = prm.time.end_time * (step - 1) / n_steps;
         const double   upper_before = upper_punch_position(before);
+        const double   lower_before = lower_punch_position(before);
         StepStatistics s;
         s.step                   = step;
         s.time                   = time;
@@ -666,10 +678,16 @@ namespace densify
         const double upper         = upper_punch_position(time);
         const double lower         = lower_punch_position(time);
         s.punch_displacement       = upper_initial - upper;
-        s.lower_punch_displacement = lower - lower_punch_position(0.);
-        s.phase                    = static_cast<unsigned int>(
-          press_phase(upper_before - upper,
-                      lower - lower_punch_position(before)));
+        s.lower_punch_displacement = lower - lower_initial;
+        {
+          // a lower punch under force control presses: its rise closes the
+          // gap as the upper punch's advance does
+          const double rise     = lower - lower_before;
+          const bool   pressing = lower_control.force_controlled(time);
+          s.phase               = static_cast<unsigned int>(
+            press_phase(upper_before - upper + (pressing ? rise : 0.),
+                        pressing ? 0. : rise));
+        }
 
         const auto upper_kind =
           static_cast<unsigned int>(ToolKind::upper_punch);

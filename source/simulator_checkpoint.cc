@@ -37,7 +37,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 7;
+    constexpr unsigned int checkpoint_version = 8;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -202,7 +202,7 @@ namespace densify
       // the explicit steps the mass scaling was set for
       unsigned int n_explicit = prm.explicit_dynamics.n_steps;
       archive &dynamics &work &factors &calibration &bound &updates &mode
-        &n_explicit &punch_control;
+        &n_explicit &punch_control &lower_control;
       // each force term's state (history, multipliers, friction)
       for (const ForceTerm *term : force_terms())
         term->write_checkpoint(archive);
@@ -343,9 +343,11 @@ namespace densify
       {
         boost::archive::binary_iarchive archive(in);
         archive                        &header;
-        // format 6 lacks only the punch control's state, which a run of
-        // that densify (displacement control only) left at its start
-        if (header.version != checkpoint_version && header.version != 6)
+        // format 6 lacks the punch controls' state, format 7 the lower
+        // punch's, which a run of that densify (displacement control only)
+        // left at their start
+        if (header.version != checkpoint_version && header.version != 6 &&
+            header.version != 7)
           throw InputError(
             "--resume: checkpoint '" + file.string() + "' has format version " +
             std::to_string(header.version) +
@@ -388,6 +390,8 @@ namespace densify
               &calibrated_bound &mass_updates &mode &n_explicit;
         if (header.version >= 7)
           archive &punch_control;
+        if (header.version >= 8)
+          archive &lower_control;
         for (ForceTerm *term : force_terms())
           term->read_checkpoint(archive);
       }

@@ -312,6 +312,7 @@ namespace densify
     // half the force's gap to the target per station: the station's force
     // lags its move, and closing all of it overshoots
     punch_control.plan(time, 0.5);
+    lower_control.plan(time, 0.5);
     explicit_account = explicit_dynamics->advance(*this, solution, time);
     current_time     = time;
     current_upper    = upper_punch_position(time);
@@ -351,6 +352,8 @@ namespace densify
                  m.particles.friction_force);
     punch_control.accept(
       fit.tools.normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
+    lower_control.accept(
+      fit.tools.normal_force[static_cast<unsigned int>(ToolKind::lower_punch)]);
     return fit;
   }
 

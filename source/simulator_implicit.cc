@@ -136,6 +136,7 @@ namespace densify
   Simulator::set_loads(const double time, const double increment)
   {
     punch_control.plan(time);
+    lower_control.plan(time);
     return apply_loads(time, increment);
   }
 
@@ -144,11 +145,18 @@ namespace densify
   bool
   Simulator::loads_reached(double &scale)
   {
-    const double force =
-      last_contact.tools
-        .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)];
-    if (punch_control.correct(force, scale))
+    const auto &force = last_contact.tools.normal_force;
+    // each punch's correction from its own force (a punch whose move stands
+    // keeps it; the solve's start scales with the force-controlled one's)
+    double     lower_scale   = 1.;
+    const bool upper_reached = punch_control.correct(
+      force[static_cast<unsigned int>(ToolKind::upper_punch)], scale);
+    const bool lower_reached = lower_control.correct(
+      force[static_cast<unsigned int>(ToolKind::lower_punch)], lower_scale);
+    if (upper_reached && lower_reached)
       return true;
+    if (upper_reached)
+      scale = lower_scale;
     // the same increment, from the committed time
     apply_loads(load_time, load_time - current_time);
     return false;
@@ -161,11 +169,15 @@ namespace densify
   {
     const double upper = upper_punch_position(time);
     if (upper <= lower_punch_position(time))
-      throw ConvergenceError(
-        "Tools/Upper punch/Force history: the target force of " +
-        std::to_string(punch_control.target(time)) +
-        " N at t = " + std::to_string(time) +
-        " s is not reached before the upper punch meets the lower one; give a smaller force");
+      {
+        const bool lower = !punch_control.force_controlled(time);
+        throw ConvergenceError(
+          std::string(lower ? "Tools/Lower punch" : "Tools/Upper punch") +
+          "/Force history: the target force of " +
+          std::to_string((lower ? lower_control : punch_control).target(time)) +
+          " N at t = " + std::to_string(time) +
+          " s is not reached before the punches meet; give a smaller force");
+      }
     load_time = time;
     if (body_force)
       body_force->set_time(time);
@@ -255,6 +267,9 @@ namespace densify
     punch_control.accept(
       last_contact.tools
         .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
+    lower_control.accept(
+      last_contact.tools
+        .normal_force[static_cast<unsigned int>(ToolKind::lower_punch)]);
     current_upper = upper_punch_position(load_time);
   }
 } // namespace densify

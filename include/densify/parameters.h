@@ -112,6 +112,17 @@ namespace densify
     /// Upward displacement history of the lower punch "t:d, ..." (s:mm),
     /// piecewise linear: ejection.
     std::string lower_displacement = "0:0";
+    /// Target force history of the lower punch "t:F, ..." (s:N; upward);
+    /// within its times the punch is force-controlled. Empty: displacement
+    /// control.
+    std::string lower_force;
+    /// The same as a mean axial stress over the die's bore (s:MPa).
+    std::string lower_pressure;
+    /// Relative tolerance of the lower punch's force control.
+    double lower_force_tolerance = 1e-3;
+    /// Largest lower punch speed under force control (mm/s; 0: from its
+    /// displacement history).
+    double lower_max_speed = 0.;
     /// Upper punch present?
     bool upper_enabled = true;
     /// Upper punch face height at t = 0 (mm), or "auto": top of the highest

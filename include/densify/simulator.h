@@ -301,12 +301,12 @@ namespace densify
     double
     apply_loads(const double time, const double increment);
 
-    /// The upper punch's largest speed under force control (mm/s):
-    /// Tools/Upper punch/Maximum speed, or from the displacement history
+    /// A punch's largest speed under force control (mm/s): its Maximum
+    /// speed @p max_speed if positive, or from its displacement history
     /// @p table.
     double
-    force_control_speed(
-      const std::vector<std::pair<double, double>> &table) const;
+    force_control_speed(const std::vector<std::pair<double, double>> &table,
+                        const double max_speed) const;
 
     /// Position of the upper punch face at time @p t (mm).
     double
@@ -436,7 +436,11 @@ namespace densify
     double            upper_initial = 0.;
     /// Where the upper punch is: its displacement and force histories.
     PunchControl punch_control;
-    double       h_min = 0.;
+    /// Where the lower punch is (its rise): its histories likewise.
+    PunchControl lower_control;
+    /// Height of the lower punch face at t = 0 (mm).
+    double lower_initial = 0.;
+    double h_min         = 0.;
 
     parallel::shared::Triangulation<3> triangulation;
     std::unique_ptr<FESystem<3>>       fe;
@@ -477,9 +481,7 @@ namespace densify
     Tensor<1, 3>                           scene_body_force;
     std::vector<std::pair<double, double>> body_force_table;
     std::vector<std::pair<double, double>> lateral_table;
-    /// The lower punch's upward displacement against time, and the die's
-    /// top edge (infinity: none).
-    std::vector<std::pair<double, double>> lower_table;
+    /// The die's top edge (infinity: none).
     double die_top = std::numeric_limits<double>::infinity();
 
     /// The implicit method: Newton's method, the load stepper, the linear

@@ -16,9 +16,16 @@
 #      mm/s: 0.002 mm a step) the target of step 5 needs more travel than
 #      that: the punch moves by exactly 0.002 mm and carries less than 125 N;
 #      by step 7 it has caught up with the held 150 N.
-#   6. Bad input stops with exit 2 and one line naming the parameter: a
+#   6. The lower punch under force control (Tools/Lower punch/Force
+#      history 0:0, 0.5:100, 1:100 N) with the upper punch standing, on 1
+#      and 2 ranks: each step's lower punch force is its target within the
+#      tolerance, the upper punch carries the same (no die friction here),
+#      the lower punch rises while the target does and then stays (to 1e-9
+#      mm), the rows are in the phase load and then hold, and the ranks
+#      agree.
+#   7. Bad input stops with exit 2 and one line naming the parameter: a
 #      force and a pressure history together, a negative force, a pressure
-#      without the die.
+#      without the die (for either punch).
 set -u
 cd "$WORK_DIR"
 fails=0
@@ -70,6 +77,38 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     printf "default speed: step 5 moved %.6g mm to %.6g N (target 125), step 7 %.6g N\n", d[5] - d[4], f[5], f[7]
     exit bad > 0 }' slow/statistics.csv || fails=$((fails + 1))
 
+# the lower punch under force control
+lower=(--set "Output/Interval=0" --set "Time stepping/Number of steps=10"
+  --set "Tools/Upper punch/Displacement history=0:0"
+  --set "Tools/Lower punch/Force history=0:0, 0.5:100, 1:100")
+"$DENSIFY" "$scene" "${lower[@]}" --set "Output/Directory=lower_one" > lower_one.log 2>&1 ||
+  { echo "FAIL the lower punch, 1 rank"; tail -n 5 lower_one.log; fails=$((fails + 1)); }
+"$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${lower[@]}" \
+  --set "Output/Directory=lower_two" > lower_two.log 2>&1 ||
+  { echo "FAIL the lower punch, 2 ranks"; tail -n 5 lower_two.log; fails=$((fails + 1)); }
+for run in lower_one lower_two; do
+  awk -F, -v run=$run 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+    function abs(x) { return x < 0 ? -x : x }
+    { s = $1; target = (s <= 5 ? 20 * s : 100)
+      f = $c["lower_punch_force"]; u = $c["upper_punch_force"]
+      r[s] = $c["lower_punch_displacement"]; ph = $c["phase"]
+      if (abs(f - target) > 1e-3 * 100) { print "FAIL " run " step " s ": " f " N, target " target; bad++ }
+      if (abs(u - f) > 1e-6 * f) { print "FAIL " run " step " s ": upper " u " N, lower " f " N"; bad++ }
+      if (ph != (s <= 5 ? 0 : 1)) { print "FAIL " run " step " s " in phase " ph; bad++ } }
+    END {
+      for (s = 2; s <= 5; ++s) if (!(r[s] > r[s - 1])) { print "FAIL " run " no rise at step " s; bad++ }
+      for (s = 6; s <= 10; ++s) if (abs(r[s] - r[5]) > 1e-9) { print "FAIL " run " the held lower punch moved at step " s; bad++ }
+      printf "%s: lower punch at 100 N after a rise of %.6g mm, held\n", run, r[5]
+      exit bad > 0 }' $run/statistics.csv || fails=$((fails + 1))
+done
+paste -d, lower_one/statistics.csv lower_two/statistics.csv | awk -F, 'NR == 1 { n = NF / 2
+    for (i = 1; i <= n; ++i) c[$i] = i; next }
+  function abs(x) { return x < 0 ? -x : x }
+  { a = c["lower_punch_force"]; b = c["lower_punch_displacement"]
+    if (abs($a - $(a + n)) > 1e-6 * (1 + abs($a)) || abs($b - $(b + n)) > 1e-9) {
+      print "FAIL ranks differ at step " $1 ": " $a " / " $(a + n) " N, " $b " / " $(b + n) " mm"; bad++ } }
+  END { if (!bad) print "lower punch: 1 and 2 ranks agree"; exit bad > 0 }' || fails=$((fails + 1))
+
 bad_input() {
   local expect="$1"
   shift
@@ -89,4 +128,9 @@ bad_input "Tools/Upper punch/Force history: -5.* is negative" \
 bad_input "Tools/Upper punch/Pressure history: a mean stress needs the die" \
   --set "Tools/Die wall/Enabled=false" \
   --set "Tools/Upper punch/Pressure history=0.4:1, 0.8:2"
+bad_input "Tools/Lower punch/Pressure history: give either" \
+  --set "Tools/Lower punch/Force history=0.4:100, 0.8:150" \
+  --set "Tools/Lower punch/Pressure history=0.4:1, 0.8:2"
+bad_input "Tools/Lower punch/Force history: -5.* is negative" \
+  --set "Tools/Lower punch/Force history=0.4:100, 0.8:-5"
 exit $((fails > 0))
