@@ -182,7 +182,8 @@ namespace densify
             return "Material/Hardening = " + hardening + ", not power law";
         }
       if (!die && (entry == "Tools/Die wall/Friction coefficient" ||
-                   entry == "Tools/Die wall/Top"))
+                   entry == "Tools/Die wall/Top" ||
+                   entry == "Tools/Die wall/Displacement history"))
         return "the die wall is off (Tools/Die wall/Enabled = false)";
       if (!die && list && entry == "Tools/Die wall/Diameter")
         return "the die wall is off (Tools/Die wall/Enabled = false) and "

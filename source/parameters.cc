@@ -482,6 +482,15 @@ namespace densify
         "'none' for a die without end. The edge is a sharp ring; above it "
         "the wall holds nothing, so a compact pushed up past it by the lower "
         "punch leaves the die (ejection).");
+      prm.add_parameter(
+        "Displacement history",
+        tools.die_displacement,
+        "Upward (z) displacement of the die against time, as 't:d, t:d, "
+        "...' pairs (t in s, increasing; d in mm, negative lowers it), "
+        "linearly interpolated and constant beyond the last time. 0:0: the "
+        "die stands. Lowering it below a compact that the lower punch holds "
+        "strips the die off the compact (ejection by withdrawal); the die's "
+        "motion along its wall drags the particles through friction.");
       prm.add_parameter("Friction coefficient",
                         tools.die_friction,
                         "Coulomb coefficient between the particles and the "

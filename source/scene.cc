@@ -429,6 +429,8 @@ namespace densify
                   "Tools/Upper punch/Lateral displacement history");
     scene.lower_table = parse_table(prm.tools.lower_displacement,
                                     "Tools/Lower punch/Displacement history");
+    scene.die_table   = parse_table(prm.tools.die_displacement,
+                                  "Tools/Die wall/Displacement history");
     if (prm.tools.die_top != "none")
       {
         double die_top = std::numeric_limits<double>::quiet_NaN();

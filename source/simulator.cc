@@ -130,6 +130,7 @@ namespace densify
                                        prm.tools.lower_max_speed));
     lateral_table    = std::move(scene.lateral_table);
     die_top          = scene.die_top;
+    die_table        = std::move(scene.die_table);
     scene_body_force = scene.body_force;
     body_force_table = std::move(scene.body_force_table);
     for (const Particle &p : particles)
@@ -679,12 +680,18 @@ namespace densify
         const double lower         = lower_punch_position(time);
         s.punch_displacement       = upper_initial - upper;
         s.lower_punch_displacement = lower - lower_initial;
+        s.die_displacement =
+          interpolate(die_table, time) - interpolate(die_table, 0.);
         {
-          // a lower punch under force control presses: its rise closes the
-          // gap as the upper punch's advance does
-          const double rise     = lower - lower_before;
-          const bool   pressing = lower_control.force_controlled(time);
-          s.phase               = static_cast<unsigned int>(
+          // the lower punch's rise in the die (a die lowered past a held
+          // compact ejects it too); a lower punch under force control
+          // presses: its rise closes the gap as the upper punch's advance
+          // does
+          const double rise =
+            lower - lower_before -
+            (interpolate(die_table, time) - interpolate(die_table, before));
+          const bool pressing = lower_control.force_controlled(time);
+          s.phase             = static_cast<unsigned int>(
             press_phase(upper_before - upper + (pressing ? rise : 0.),
                         pressing ? 0. : rise));
         }

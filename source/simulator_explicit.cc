@@ -254,6 +254,12 @@ namespace densify
           contact.tools.normal_force[lower] *
           (lower_punch_position(scene_time) -
            lower_punch_position(scene_time - scene_increment));
+        // the die's axial force on the particles along its axial motion
+        explicit_work.tools +=
+          contact.tools
+            .axial_force[static_cast<unsigned int>(ToolKind::die_wall)] *
+          (interpolate(die_table, scene_time) -
+           interpolate(die_table, scene_time - scene_increment));
       }
     explicit_work.upper_force    = contact.tools.normal_force[upper];
     explicit_work.upper_friction = contact.tools.friction_force[upper];

@@ -189,6 +189,12 @@ namespace densify
         tool_contact->set_tool_translation(
           ToolKind::upper_punch,
           Tensor<1, 3>({interpolate(lateral_table, time), 0., 0.}));
+        // the die moves along its axis: its top edge with it, and its wall
+        // drags through friction
+        const double die_shift = interpolate(die_table, time);
+        tool_contact->set_tool_translation(ToolKind::die_wall,
+                                           Tensor<1, 3>({0., 0., die_shift}));
+        tool_contact->set_tool_top(ToolKind::die_wall, die_top + die_shift);
       }
     // the arctangent law's slip scale: the threshold velocity times the
     // increment's duration

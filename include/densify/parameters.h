@@ -147,6 +147,8 @@ namespace densify
     double die_diameter = 20.;
     /// Height of the die's top edge (mm), or "none": a die without end.
     std::string die_top = "none";
+    /// Upward (z) displacement history of the die "t:d, ..." (s:mm).
+    std::string die_displacement = "0:0";
     /// Sideways (x) displacement history of the upper punch "t:d, ..."
     /// (s:mm).
     std::string upper_lateral_displacement = "0:0";

@@ -31,6 +31,8 @@ namespace densify
     /// The lower punch's target (upward) force against time (s, N; empty:
     /// none).
     std::vector<std::pair<double, double>> lower_force_table;
+    /// Upward die displacement against time (s, mm).
+    std::vector<std::pair<double, double>> die_table;
     /// Height of the die's top edge (mm; infinity: none).
     double die_top = std::numeric_limits<double>::infinity();
     /// Body force on every particle (N/mm^3) and its factor against time.

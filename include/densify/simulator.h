@@ -481,8 +481,10 @@ namespace densify
     Tensor<1, 3>                           scene_body_force;
     std::vector<std::pair<double, double>> body_force_table;
     std::vector<std::pair<double, double>> lateral_table;
-    /// The die's top edge (infinity: none).
+    /// The die's top edge at t = 0 (infinity: none), and its upward
+    /// displacement against time.
     double die_top = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> die_table;
 
     /// The implicit method: Newton's method, the load stepper, the linear
     /// solver; null with explicit dynamics.

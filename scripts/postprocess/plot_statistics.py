@@ -15,7 +15,8 @@ not matter) and writes into OUTPUT_DIR (or --out):
                line Densify's summary fits over the upper half of the
                pressure range (only for runs with a die and both punches)
   ejection.png the ejection curve of a press cycle: the lower punch's force
-               (N) against its rise (mm) over the rows in the phase eject
+               (N) against its rise in the die (mm; lower_punch_displacement
+               - die_displacement) over the rows in the phase eject
                (only for runs that eject)
   contacts.png the mean coordination number and the contact area fraction
                (%) against relative density (only for runs in which
@@ -172,14 +173,17 @@ def plot_ejection(directory, out_dir):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    rise = [to_float(r["lower_punch_displacement"]) for r in eject]
+    # the lower punch's rise in the die (a lowered die ejects as well)
+    rise = [to_float(r["lower_punch_displacement"])
+            - (to_float(r["die_displacement"]) if "die_displacement" in r else 0.)
+            for r in eject]
     force = [to_float(r["lower_punch_force"]) for r in eject]
     fig, ax = plt.subplots(figsize=(6, 4.5), dpi=120)
     ax.plot(rise, force, "o-", markersize=3)
     peak = max(range(len(force)), key=lambda i: force[i])
     ax.annotate(f"peak {force[peak]:.4g} N", (rise[peak], force[peak]),
                 textcoords="offset points", xytext=(5, 5))
-    ax.set_xlabel("lower punch rise (mm)")
+    ax.set_xlabel("lower punch rise in the die (mm)")
     ax.set_ylabel("lower punch force (N)")
     ax.set_ylim(bottom=0)
     ax.ticklabel_format(useOffset=False)

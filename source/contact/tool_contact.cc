@@ -76,6 +76,16 @@ namespace densify
 
 
   void
+  ToolContact::set_tool_top(const ToolKind kind, const double top)
+  {
+    for (RigidTool &tool : tool_list)
+      if (tool.kind == kind)
+        tool.top = top;
+  }
+
+
+
+  void
   ToolContact::set_tool_translation(const ToolKind      kind,
                                     const Tensor<1, 3> &translation)
   {

@@ -280,6 +280,18 @@ namespace densify
         }
     if (peak == c[0].size())
       return "";
+    // the travel is the lower punch's rise in the die: a lowered die
+    // (withdrawal) counts as a rise (a file without the column: none)
+    try
+      {
+        const std::vector<double> die =
+          read_columns(statistics_csv, {"die_displacement"})[0];
+        for (std::size_t i = 0; i < c[2].size(); ++i)
+          if (std::isfinite(die[i]))
+            c[2][i] -= die[i];
+      }
+    catch (const std::exception &)
+      {}
     std::ostringstream s;
     s << std::setprecision(4) << "Ejection over a lower punch rise of "
       << c[2][first > 0 ? first - 1 : first] << " -> " << c[2][last]

@@ -111,6 +111,11 @@ namespace densify
     void
     set_tool_translation(const ToolKind kind, const Tensor<1, 3> &translation);
 
+    /// Set the height of the top edge of the tools of @p kind (the die
+    /// wall's; mm, infinity: none).
+    void
+    set_tool_top(const ToolKind kind, const double top);
+
     /// Set the regularisation slip of the arctangent law (mm) for the next
     /// increment.
     void

@@ -135,9 +135,10 @@ namespace densify
   /**
    * The ejection of a press cycle from @p statistics_csv: the largest force
    * on the lower punch over the rows in the phase eject, the lower punch's
-   * rise at it, and the force when the last row ends (the travel curve is
-   * lower_punch_force against lower_punch_displacement over those rows).
-   * "" if no row ejects.
+   * rise in the die at it (lower_punch_displacement - die_displacement),
+   * and the force when the last row ends (the travel curve is
+   * lower_punch_force against that rise over those rows). "" if no row
+   * ejects.
    */
   std::string
   ejection_summary(const std::string &statistics_csv);

@@ -96,6 +96,8 @@ namespace densify
     unsigned int phase = 0;
     /// The lower punch's rise from its start (mm; the ejection's travel).
     double lower_punch_displacement = 0.;
+    /// The die's upward displacement from its start (mm).
+    double die_displacement = 0.;
     /// Mean coordination number: twice the particle pairs in contact over
     /// the number of particles (the tools not counted).
     double coordination_number = 0.;
