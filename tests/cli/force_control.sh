@@ -57,13 +57,19 @@ for run in one two; do
         run, f[5], f[6], f[7], f[8], d[6], d[9] - d[8], d[10] - d[9]
       exit bad > 0 }' $run/statistics.csv || fails=$((fails + 1))
 done
-paste -d, one/statistics.csv two/statistics.csv | awk -F, 'NR == 1 { n = NF / 2
-    for (i = 1; i <= n; ++i) c[$i] = i; next }
-  function abs(x) { return x < 0 ? -x : x }
-  { a = c["upper_punch_force"]; b = c["punch_displacement"]
-    if (abs($a - $(a + n)) > 1e-6 * (1 + abs($a)) || abs($b - $(b + n)) > 1e-9) {
-      print "FAIL ranks differ at step " $1 ": " $a " / " $(a + n) " N, " $b " / " $(b + n) " mm"; bad++ } }
-  END { if (!bad) print "1 and 2 ranks agree"; exit bad > 0 }' || fails=$((fails + 1))
+# agree DIR1 DIR2 FORCE TRAVEL WHAT: the columns FORCE (to 1e-6) and TRAVEL
+# (to 1e-9 mm) of the two runs' statistics.csv agree at every step
+agree() {
+  paste -d, "$1/statistics.csv" "$2/statistics.csv" | awk -F, -v force="$3" \
+    -v travel="$4" -v what="$5" 'NR == 1 { n = NF / 2
+      for (i = 1; i <= n; ++i) c[$i] = i; next }
+    function abs(x) { return x < 0 ? -x : x }
+    { a = c[force]; b = c[travel]
+      if (abs($a - $(a + n)) > 1e-6 * (1 + abs($a)) || abs($b - $(b + n)) > 1e-9) {
+        print "FAIL ranks differ at step " $1 ": " $a " / " $(a + n) " N, " $b " / " $(b + n) " mm"; bad++ } }
+    END { if (!bad) print what ": 1 and 2 ranks agree"; exit bad > 0 }' || fails=$((fails + 1))
+}
+agree one two upper_punch_force punch_displacement "upper punch"
 
 "$DENSIFY" "$scene" "${control[@]}" --set "Output/Directory=slow" > slow.log 2>&1 ||
   { echo "FAIL the default speed"; tail -n 5 slow.log; fails=$((fails + 1)); }
@@ -101,13 +107,7 @@ for run in lower_one lower_two; do
       printf "%s: lower punch at 100 N after a rise of %.6g mm, held\n", run, r[5]
       exit bad > 0 }' $run/statistics.csv || fails=$((fails + 1))
 done
-paste -d, lower_one/statistics.csv lower_two/statistics.csv | awk -F, 'NR == 1 { n = NF / 2
-    for (i = 1; i <= n; ++i) c[$i] = i; next }
-  function abs(x) { return x < 0 ? -x : x }
-  { a = c["lower_punch_force"]; b = c["lower_punch_displacement"]
-    if (abs($a - $(a + n)) > 1e-6 * (1 + abs($a)) || abs($b - $(b + n)) > 1e-9) {
-      print "FAIL ranks differ at step " $1 ": " $a " / " $(a + n) " N, " $b " / " $(b + n) " mm"; bad++ } }
-  END { if (!bad) print "lower punch: 1 and 2 ranks agree"; exit bad > 0 }' || fails=$((fails + 1))
+agree lower_one lower_two lower_punch_force lower_punch_displacement "lower punch"
 
 bad_input() {
   local expect="$1"
