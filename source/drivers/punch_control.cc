@@ -1,4 +1,4 @@
-// The upper punch's control by displacement and force histories.
+// A punch's control by displacement and force histories.
 #include <densify/drivers/punch_control.h>
 #include <densify/parameters.h>
 

@@ -1,5 +1,5 @@
-// The upper punch's control: its displacement history and, within the times
-// of a force history, the travel that makes it carry the target force.
+// A punch's control: its displacement history and, within the times of a
+// force history, the travel that makes it carry the target force.
 #pragma once
 
 #include <boost/serialization/utility.hpp>
@@ -11,11 +11,13 @@
 namespace densify
 {
   /**
-   * Where the upper punch is at each time. Outside the force window (the
-   * times of the force history, (t_first, t_last]) the punch follows the
-   * displacement history; after the window, that history continues from
-   * where the force control left the punch (shifted by a constant), so the
-   * travel is continuous at both switches. Within the window, each move (an
+   * Where a punch is at each time, as its travel (the upper punch's
+   * downward, the lower punch's upward: the direction in which its force
+   * grows). Outside the force window (the times of the force history,
+   * (t_first, t_last]) the punch follows the displacement history; after
+   * the window, that history continues from where the force control left
+   * the punch (shifted by a constant), so the travel is continuous at both
+   * switches. Within the window, each move (an
    * implicit increment or an explicit station) starts from the last
    * accepted state (time, travel, force) and plans its end travel from the
    * target force and the secant stiffness of the last two accepted states;
