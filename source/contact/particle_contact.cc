@@ -542,15 +542,15 @@ namespace densify
         bool   face_in_contact = false;
         if (begin < end)
           {
-            const auto corner = [&](const unsigned int a) {
+            const auto slave_vertex = [&](const unsigned int a) {
               return slave.cell->vertex_index(slave.local_vertex[a]);
             };
             const auto area = [](const Tensor<1, 3> &e1,
                                  const Tensor<1, 3> &e2) {
               return cross_product_3d(e1, e2).norm();
             };
-            area_ratio = area(x_now[corner(1)] - x_now[corner(0)],
-                              x_now[corner(2)] - x_now[corner(0)]) /
+            area_ratio = area(x_now[slave_vertex(1)] - x_now[slave_vertex(0)],
+                              x_now[slave_vertex(2)] - x_now[slave_vertex(0)]) /
                          area(slave.cell->vertex(slave.local_vertex[1]) -
                                 slave.cell->vertex(slave.local_vertex[0]),
                               slave.cell->vertex(slave.local_vertex[2]) -
