@@ -877,6 +877,25 @@ namespace densify
   void
   check_parameters(const Parameters &parameters)
   {
+    {
+      const std::string &k =
+        Utilities::trim(parameters.explicit_dynamics.contact_stiffness);
+      double value = 0.;
+      bool   valid = k == "auto";
+      if (!valid)
+        try
+          {
+            value = Utilities::string_to_double(k);
+            valid = value >= 1e-6 && value <= 100.;
+          }
+        catch (...)
+          {}
+      if (!valid)
+        throw std::runtime_error(
+          "Explicit/Contact stiffness = '" + k +
+          "' is neither 'auto' nor a number from 1e-6 to 100; give e.g. 1 or "
+          "auto");
+    }
     if (Utilities::trim(parameters.output.directory).empty())
       throw std::runtime_error(
         "Output/Directory is empty: give a directory for the results, e.g. "

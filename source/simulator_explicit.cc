@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <type_traits>
 
@@ -46,8 +47,24 @@ namespace densify
     lumped_mass->calibrate(largest_frequency2(mass), calibration_margin, true);
     lumped_mass->update(solution_ghosted, required, mass);
     calibrated_bound = lumped_mass->bound_frequency2();
-    explicit_penalty =
-      lumped_mass->contact_penalties(prm.explicit_dynamics.contact_stiffness);
+    // Explicit/Contact stiffness, per particle from its material
+    std::vector<double>           stiffness;
+    std::map<std::string, double> by_material;
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        stiffness.push_back(
+          explicit_contact_stiffness(prm.explicit_dynamics.contact_stiffness,
+                                     *particle_material[p]));
+        by_material[particles[p].material] = stiffness.back();
+      }
+    if (Utilities::trim(prm.explicit_dynamics.contact_stiffness) == "auto")
+      {
+        pcout << "Explicit/Contact stiffness = auto:";
+        for (const auto &[name, k] : by_material)
+          pcout << " " << name << " " << std::setprecision(3) << k;
+        pcout << std::endl;
+      }
+    explicit_penalty = lumped_mass->contact_penalties(stiffness);
     std::vector<double> diameters;
     for (const Particle &p : particles)
       diameters.push_back(p.diameter);

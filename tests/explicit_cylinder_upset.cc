@@ -114,7 +114,7 @@ namespace
       lumped.update(u, required_step, mass);
       lumped.calibrate(largest_frequency2(mass), 1.25, true);
       lumped.update(u, required_step, mass);
-      const std::vector<double> penalty = lumped.contact_penalties(0.25);
+      const std::vector<double> penalty = lumped.contact_penalties({0.25});
       std::vector<RigidTool>    tools(2);
       tools[0].kind     = ToolKind::lower_punch;
       tools[0].position = 0.;

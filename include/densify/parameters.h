@@ -272,8 +272,10 @@ namespace densify
     /// a particle's lowest compression mode.
     double damping_ratio = 0.;
     /// Contact springs' squared frequency against the elements' largest one
-    /// (sets the contact penalty; the stable step accounts for it).
-    double contact_stiffness = 1.;
+    /// (sets the contact penalty; the stable step accounts for it): a number
+    /// for every particle, or "auto" for one per material from its initial
+    /// yield stress over Young's modulus (explicit_contact_stiffness()).
+    std::string contact_stiffness = "1";
     /// The contact multipliers follow the pressures over about this many
     /// steps (0: pure penalty).
     unsigned int multiplier_steps = 0;

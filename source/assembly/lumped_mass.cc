@@ -363,9 +363,10 @@ namespace densify
 
 
   std::vector<double>
-  LumpedMass::contact_penalties(const double stiffness)
+  LumpedMass::contact_penalties(const std::vector<double> &stiffness)
   {
     Assert(last_mass.size() > 0, ExcMessage("update() first"));
+    AssertDimension(stiffness.size(), materials.size());
     const MPI_Comm comm = dof_handler->get_communicator();
     // the elements' largest squared frequency, and per particle the largest
     // A_i / m_i of its surface vertices
@@ -391,7 +392,7 @@ namespace densify
     penalty.assign(materials.size(), 0.);
     for (unsigned int p = 0; p < materials.size(); ++p)
       if (ratio[p] > 0.)
-        penalty[p] = stiffness * omega_e2 / (2. * spring_ratio * ratio[p]);
+        penalty[p] = stiffness[p] * omega_e2 / (2. * spring_ratio * ratio[p]);
     return penalty;
   }
 
@@ -408,5 +409,22 @@ namespace densify
                          numbers::PI * std::sqrt(particle_wave_speed2[p]) /
                            diameters[p]);
     return omega;
+  }
+
+
+  double
+  explicit_contact_stiffness(const std::string &setting,
+                             const Material    &material)
+  {
+    const std::string k = Utilities::trim(setting);
+    if (k != "auto")
+      return Utilities::string_to_double(k);
+    // sigma0 / E of tin over the factor it needs (doc/verification.md)
+    constexpr double reference_ratio = 1.44e-4;
+    const double     ratio =
+      material.initial_yield_stress() / material.youngs_modulus();
+    if (!std::isfinite(ratio))
+      return 1.;
+    return std::min(100., std::max(1., ratio / reference_ratio));
   }
 } // namespace densify

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""The table of benchmarks/press_to_95.sh from its OUT directory:
+   python3 benchmarks/press_to_95_table.py OUT "MATERIALS" SCENE
+the upper punch pressure at 80 / 85 / 90 / 92.5 / 95 % relative density by
+each method, the explicit run against the implicit one, the smallest V/V0
+and the wall time; writes OUT/MATERIAL_METHOD.csv (density %, MPa)."""
+import csv, math, re, sys
+out, materials, scene = sys.argv[1], sys.argv[2].split(), sys.argv[3]
+stations = [80.0, 85.0, 90.0, 92.5, 95.0]
+diameter = 8.07
+for line in open(scene):
+    m = re.match(r"\s*set Diameter\s*=\s*([0-9.]+)", line)
+    if m:
+        diameter = float(m.group(1))
+area = math.pi * diameter ** 2 / 4
+def rows(name):
+    try:
+        return list(csv.DictReader(open(f"{out}/{name}/statistics.csv")))
+    except FileNotFoundError:
+        return []
+def curve(rs):
+    return [(100 * float(r["relative_density"]), float(r["upper_punch_force"]) / area)
+            for r in rs]
+def at(c, density):
+    for (da, pa), (db, pb) in zip(c, c[1:]):
+        if da <= density <= db and db > da:
+            return pa + (density - da) / (db - da) * (pb - pa)
+    return float("nan")
+print("die area %.3f mm^2; pressure = F_upper / area (MPa)" % area)
+print("material | method | end density % | smallest V/V0 | wall s | "
+      + " | ".join("p at %g %%" % s for s in stations))
+for material in materials:
+    curves = {}
+    for method in ("implicit", "explicit"):
+        name = f"{material}_{method}"
+        rs = rows(name)
+        seconds = float(open(f"{out}/{name}.seconds").read())
+        failed = [l.strip() for l in open(f"{out}/{name}.log") if "error" in l or "exit" in l]
+        c = curve(rs)
+        curves[method] = c
+        with open(f"{out}/{name}.csv", "w") as f:
+            f.write("relative_density_percent,pressure_MPa\n")
+            for d, p in c:
+                f.write(f"{d:.4f},{p:.4f}\n")
+        vmin = min((float(r["min_cell_volume_ratio"]) for r in rs), default=float("nan"))
+        end = c[-1][0] if c else float("nan")
+        print(f"{material} | {method} | {end:.2f} | {vmin:.3f} | {seconds:.0f} | "
+              + " | ".join("%.2f" % at(c, s) for s in stations)
+              + ("  (" + failed[-1] + ")" if failed else ""))
+    diff = [100 * (at(curves["explicit"], s) / at(curves["implicit"], s) - 1)
+            for s in stations]
+    print(f"{material} | explicit - implicit | | | | "
+          + " | ".join("%+.2f %%" % d for d in diff))
