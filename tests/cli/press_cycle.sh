@@ -33,17 +33,26 @@
 #   7. The summary has the contact line at full load and plot_statistics.py
 #      draws contacts.png (coordination number and contact area fraction
 #      against density).
+#   8. The uninterrupted cycle runs by scripts/run.sh (graphics of the last
+#      step only), which writes the cycle's plots into its output directory:
+#      density, forces, compaction, ejection and contacts, and the picture
+#      of the ejected compact (view_oblique.png).
 set -u
 cd "$WORK_DIR"
 fails=0
-cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=0"
+cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=23"
   --set "Output/Checkpoint interval=1" --set "Tools/Die wall/Diameter=7.52"
   --set "Tools/Upper punch/Displacement history=0:0, 0.2:0.7, 0.22:0.7, 0.26:0.65, 0.46:-1.5"
   --set "Tools/Lower punch/Displacement history=0:0, 0.26:0, 0.46:1"
   --set "Time stepping/End time=0.46" --set "Time stepping/Number of steps=23")
 scene="$SOURCE_DIR/prm/press_cycle_sn_light.prm"
-"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=whole" > whole.log 2>&1 ||
-  { echo "FAIL the cycle"; tail -n 5 whole.log; fails=$((fails + 1)); }
+DENSIFY="$DENSIFY" bash "$SOURCE_DIR/scripts/run.sh" "$scene" "${cycle[@]}" \
+  --set "Output/Directory=whole" > whole.log 2>&1 ||
+  { echo "FAIL the cycle by scripts/run.sh"; tail -n 5 whole.log; fails=$((fails + 1)); }
+for picture in density forces compaction ejection contacts view_oblique; do
+  [ "$(head -c 4 "whole/$picture.png" 2>/dev/null | tail -c 3)" = "PNG" ] ||
+    { echo "FAIL scripts/run.sh drew no $picture.png"; fails=$((fails + 1)); }
+done
 awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { ph = $c["phase"]; n = NR
     if (ph < last) { print "FAIL phase " ph " after " last " at step " $1; bad++ }
