@@ -878,15 +878,14 @@ namespace densify
   check_parameters(const Parameters &parameters)
   {
     {
-      const std::string &k =
+      const std::string k =
         Utilities::trim(parameters.explicit_dynamics.contact_stiffness);
-      double value = 0.;
-      bool   valid = k == "auto";
+      bool valid = k == "auto";
       if (!valid)
         try
           {
-            value = Utilities::string_to_double(k);
-            valid = value >= 1e-6 && value <= 100.;
+            const double value = Utilities::string_to_double(k);
+            valid              = value >= 1e-6 && value <= 100.;
           }
         catch (...)
           {}

@@ -216,7 +216,7 @@ namespace densify
         "Number of steps. auto: for each material its initial yield stress "
         "over Young's modulus divided by 1.44e-4 (at least 1; 1 for laws "
         "that do not yield), so that the penalty's penetration relative to "
-        "the element is alike in every material (the presets: Sn 5.0, Cu "
+        "the element is alike in every material (the presets: Sn 4.99, Cu "
         "1.96, Fe 1.65); for the dense stage of a press and for mixtures of "
         "materials.",
         Patterns::Anything());
