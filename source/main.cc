@@ -177,7 +177,7 @@ main(int argc, char **argv)
   const ErrorCommunicator error_comm;
   auto stop = [&](const std::string &message, const int code) {
     if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1 &&
-        !all_ranks_arrive(error_comm.comm, 10.))
+        !all_ranks_arrive(error_comm.comm, 3.))
       {
         std::cerr << "densify: error: " << one_line(message) << " (on MPI rank "
                   << rank << " only; every rank stopped)" << std::endl;

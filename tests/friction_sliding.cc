@@ -79,6 +79,10 @@ main(int argc, char **argv)
     simulator->run();
     const StepStatistics &s = simulator->statistics().back();
     const double          x = simulator->particle_mean_displacements()[0][0];
+    // the sideways displacement to two digits: at 0.97 of the friction
+    // limit most contact points slip and the sphere's sideways stiffness is
+    // small, so residuals within the Newton tolerance move it by a few 1e-4
+    // relative (2.2e-4 measured between the two line searches)
     // the two punches hold the pull together, each below its limit
     // (statistics give the magnitudes of the friction forces; their small
     // components across the pull, from the sphere's slight twist, make the
@@ -94,7 +98,7 @@ main(int argc, char **argv)
         << " (both below 1: "
         << testing::yes(s.lower_punch_friction < mu * s.lower_punch_force &&
                         s.upper_punch_friction < mu * s.upper_punch_force)
-        << "), sideways displacement " << std::setprecision(3) << x << " mm"
+        << "), sideways displacement " << std::setprecision(2) << x << " mm"
         << std::endl;
   }
 

@@ -232,7 +232,7 @@ namespace densify
     /// Line search along the Newton direction du: "residual" (backtrack
     /// until |R| falls) or "energy" (the step where R.du, the derivative of
     /// the incremental energy along du, has fallen to half its size).
-    std::string line_search = "residual";
+    std::string line_search = "energy";
     /// Stabilisation factor beta: tangent += beta E / D^2 M (tangent only).
     double stabilisation = 1e-6;
     /// Pseudo-transient continuation: "off", "fallback" (retry a failed

@@ -4,7 +4,7 @@
 # ranks different parameter files: the bad one fails to read on its rank
 # alone, the other rank starts the run.
 # The rank that found the error sleeps while it waits for the others (up to
-# 10 s) and the other rank waits in a collective: one processor's work.
+# 3 s) and the other rank waits in a collective: one processor's work.
 # ctest processors: 1
 set -u
 cd "$WORK_DIR"
