@@ -84,8 +84,7 @@ namespace densify
   void
   PunchControl::plan(const double t_end, const double gain)
   {
-    t1          = t_end;
-    corrections = 0;
+    t1     = t_end;
     has_lo = has_hi = false;
     last_side       = 0;
     if (!force_controlled(t1))
@@ -136,7 +135,6 @@ namespace densify
     // at that speed
     if ((d1 - d0) * -side >= max_move() * (1. - 1e-12))
       return true;
-    ++corrections;
     const double tried = d1;
     if (side < 0 && (!has_lo || d1 > lo_d))
       {

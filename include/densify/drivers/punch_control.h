@@ -81,13 +81,6 @@ namespace densify
     bool
     correct(const double force, double &scale);
 
-    /// Corrections of the current move so far.
-    unsigned int
-    n_corrections() const
-    {
-      return corrections;
-    }
-
     /// Accept the planned move's end, at which the punch carries @p force.
     void
     accept(const double force);
@@ -134,9 +127,8 @@ namespace densify
     /// The tries of the current move: the largest travel that carried less
     /// than the target, the smallest that carried more, and the side the
     /// last try fell on (regula falsi with the Illinois halving).
-    double       lo_d = 0., lo_f = 0., hi_d = 0., hi_f = 0.;
-    bool         has_lo = false, has_hi = false;
-    int          last_side   = 0;
-    unsigned int corrections = 0;
+    double lo_d = 0., lo_f = 0., hi_d = 0., hi_f = 0.;
+    bool   has_lo = false, has_hi = false;
+    int    last_side = 0;
   };
 } // namespace densify
