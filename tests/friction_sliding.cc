@@ -82,7 +82,7 @@ main(int argc, char **argv)
     // the sideways displacement to two digits: at 0.97 of the friction
     // limit most contact points slip and the sphere's sideways stiffness is
     // small, so residuals within the Newton tolerance move it by a few 1e-4
-    // relative (2.2e-4 measured between the two line searches)
+    // relative (2.2e-4 between Solver/Line search = energy and residual)
     // the two punches hold the pull together, each below its limit
     // (statistics give the magnitudes of the friction forces; their small
     // components across the pull, from the sphere's slight twist, make the
