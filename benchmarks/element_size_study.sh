@@ -40,15 +40,9 @@ for ((i = 0; i < ${#list[@]}; i += 2)); do
   [ $((i + 1)) -lt ${#list[@]} ] && run "${list[i + 1]}" "$@"
   wait $first
 done
-/usr/bin/python3 - "$out" "${list[*]}" "$scene" <<'PY'
-import csv, math, re, sys
-out, sizes, scene = sys.argv[1], sys.argv[2].split(), sys.argv[3]
-diameter = 8.07
-for line in open(scene):
-    m = re.match(r"\s*set Diameter\s*=\s*([0-9.]+)", line)
-    if m:
-        diameter = float(m.group(1))
-area = math.pi * diameter ** 2 / 4
+/usr/bin/python3 - "$out" "${list[*]}" <<'PY'
+import csv, re, sys
+out, sizes = sys.argv[1], sys.argv[2].split()
 densities, strokes = [80.0, 85.0, 90.0, 92.5, 95.0], [0.96, 1.28]
 def at(rs, x, key, value):
     for a, b in zip(rs, rs[1:]):
@@ -66,7 +60,7 @@ for h in sizes:
     initial = re.search(r"Initial relative density ([0-9.]+) %", log).group(1)
     rs = list(csv.DictReader(open(f"{out}/h{h}/statistics.csv")))
     rho = lambda r: 100 * float(r["relative_density"])
-    p = lambda r: float(r["upper_punch_force"]) / area
+    p = lambda r: float(r["upper_punch_stress"])
     s = lambda r: float(r["punch_displacement"])
     F = lambda r: float(r["upper_punch_force"])
     vmin = min(float(r["min_cell_volume_ratio"]) for r in rs)

@@ -57,4 +57,4 @@ for material in $materials; do
     --set "Explicit/Number of steps=$explicit_steps" "$@"
   wait $first
 done
-/usr/bin/python3 "$root/benchmarks/press_to_95_table.py" "$out" "$materials" "$scene"
+/usr/bin/python3 "$root/benchmarks/press_to_95_table.py" "$out" "$materials"

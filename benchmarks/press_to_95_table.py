@@ -1,32 +1,27 @@
 #!/usr/bin/env python3
 """The table of benchmarks/press_to_95.sh from its OUT directory:
-   python3 benchmarks/press_to_95_table.py OUT "MATERIALS" SCENE
+   python3 benchmarks/press_to_95_table.py OUT "MATERIALS"
 the upper punch pressure at 80 / 85 / 90 / 92.5 / 95 % relative density by
-each method, the explicit run against the implicit one, the smallest V/V0
+each method (upper_punch_stress of statistics.csv: F_upper over the die's
+bore), the explicit run against the implicit one, the smallest V/V0
 and the wall time; writes OUT/MATERIAL_METHOD.csv (density %, MPa)."""
-import csv, math, re, sys
-out, materials, scene = sys.argv[1], sys.argv[2].split(), sys.argv[3]
+import csv, sys
+out, materials = sys.argv[1], sys.argv[2].split()
 stations = [80.0, 85.0, 90.0, 92.5, 95.0]
-diameter = 8.07
-for line in open(scene):
-    m = re.match(r"\s*set Diameter\s*=\s*([0-9.]+)", line)
-    if m:
-        diameter = float(m.group(1))
-area = math.pi * diameter ** 2 / 4
 def rows(name):
     try:
         return list(csv.DictReader(open(f"{out}/{name}/statistics.csv")))
     except FileNotFoundError:
         return []
 def curve(rs):
-    return [(100 * float(r["relative_density"]), float(r["upper_punch_force"]) / area)
+    return [(100 * float(r["relative_density"]), float(r["upper_punch_stress"]))
             for r in rs]
 def at(c, density):
     for (da, pa), (db, pb) in zip(c, c[1:]):
         if da <= density <= db and db > da:
             return pa + (density - da) / (db - da) * (pb - pa)
     return float("nan")
-print("die area %.3f mm^2; pressure = F_upper / area (MPa)" % area)
+print("pressure = upper_punch_stress (F_upper / die bore area, MPa)")
 print("material | method | end density % | smallest V/V0 | wall s | "
       + " | ".join("p at %g %%" % s for s in stations))
 for material in materials:
