@@ -691,9 +691,23 @@ namespace densify
             lower - lower_before -
             (interpolate(die_table, time) - interpolate(die_table, before));
           const bool pressing = lower_control.force_controlled(time);
-          s.phase             = static_cast<unsigned int>(
-            press_phase(upper_before - upper + (pressing ? rise : 0.),
-                        pressing ? 0. : rise));
+          double     advance  = upper_before - upper + (pressing ? rise : 0.);
+          // under force control the target's trend decides: a flat target
+          // holds, whatever the punch's creep or elastic relaxation
+          const PunchControl *controlled =
+            punch_control.force_controlled(time) ? &punch_control :
+            pressing                             ? &lower_control :
+                                                   nullptr;
+          if (controlled != nullptr)
+            {
+              const double a = controlled->target(before),
+                           b = controlled->target(time);
+              const double still =
+                1e-9 * std::max({std::abs(a), std::abs(b), 1.});
+              advance = b - a > still ? 1. : b - a < -still ? -1. : 0.;
+            }
+          s.phase = static_cast<unsigned int>(
+            press_phase(advance, pressing ? 0. : rise));
         }
 
         const auto upper_kind =

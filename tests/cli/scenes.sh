@@ -16,8 +16,10 @@ for scene in "$SOURCE_DIR"/prm/*.prm; do
                            --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04") ;;
     # the poured beds shrunk to their first 12 spheres, and 500 explicit
     # steps for the short stroke
-    # the press cycle's loading only (tests/cli/press_cycle.sh runs the cycle)
+    # the press cycle's loading only, without its pressure window
+    # (tests/cli/press_cycle.sh runs the cycle)
     press_cycle_*) extra=(--set "Tools/Upper punch/Displacement history=0:0, 1.25:0.04"
+                          --set "Tools/Upper punch/Pressure history="
                           --set "Tools/Lower punch/Displacement history=0:0") ;;
     multi_layer_*) extra=(--set "Particles/Number of particles=12"
                           --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04"

@@ -107,7 +107,8 @@ namespace densify
   };
 
   /// The phase of a press cycle in a step; its number is the statistics.csv
-  /// column `phase`.
+  /// column `phase`. Under force control the target's trend stands for the
+  /// punch's motion (the Simulator passes it to press_phase()).
   enum class PressPhase : unsigned int
   {
     /// The upper punch advances (with or without the lower one rising).
