@@ -370,6 +370,12 @@ namespace densify
       }
     fit.particles.normal_force =
       at_station(interval_sum.particles.normal_force, m.particles.normal_force);
+    // contact only presses: where contacts open within the interval (a
+    // punch withdrawn), the line through a falling force and then zeros
+    // runs below zero at the station
+    for (double &f : fit.tools.normal_force)
+      f = std::max(f, 0.);
+    fit.particles.normal_force = std::max(fit.particles.normal_force, 0.);
     fit.particles.friction_force =
       at_station(interval_sum.particles.friction_force,
                  m.particles.friction_force);
