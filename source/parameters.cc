@@ -368,8 +368,9 @@ namespace densify
         "as 't:F, t:F, ...' pairs (t in s, increasing, within End time; F "
         "in N, >= 0), linearly interpolated. Between its first and last "
         "time the punch moves up or down to carry the target (force "
-        "control); before and after, Displacement history moves it. Empty: "
-        "displacement control throughout.");
+        "control); before and after, Displacement history moves it. Several "
+        "windows of force control are separated by ';' ('t:F, t:F; t:F, "
+        "t:F'). Empty: displacement control throughout.");
       prm.add_parameter(
         "Pressure history",
         tools.lower_pressure,
@@ -426,7 +427,10 @@ namespace densify
         "N, >= 0), linearly interpolated. Between its first and last time "
         "the punch moves to carry the target (force control; 'press to, "
         "hold, release'); before and after, Displacement history moves it. "
-        "Empty: displacement control throughout.");
+        "Several windows of force control are separated by ';' ('t:F, t:F; "
+        "t:F, t:F'): a punch that holds a small force in a later window "
+        "follows a compact that the lower punch ejects (a hold-down). Empty: "
+        "displacement control throughout.");
       prm.add_parameter(
         "Pressure history",
         tools.upper_pressure,

@@ -267,6 +267,20 @@ namespace densify
         "punch force is below the force from which it judges (an unloading) "
         "are not checked.",
         Patterns::Double(0., 10.));
+      prm.add_parameter(
+        "Maximum force control error",
+        explicit_dynamics.max_force_control_error,
+        "The quasi-static guard's third limit, for a punch under force or "
+        "pressure control (Tools/Upper punch or Lower punch/Force history, "
+        "Pressure history): its force at a station may miss the target by "
+        "at most this fraction of the larger of the target and the largest "
+        "punch force so far, from the second station of each force window "
+        "on (the first starts from the state before the window); "
+        "dimensionless, 0 <= r <= 10; 0: not checked. The explicit method "
+        "plans each station's travel from the last station's force, so a "
+        "run with too few steps per station swings about the target. Same "
+        "stop and scope as Maximum kinetic energy ratio.",
+        Patterns::Double(0., 10.));
     }
     prm.leave_subsection();
   }

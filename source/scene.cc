@@ -23,10 +23,10 @@ namespace densify
 {
   namespace
   {
-    /// A punch's target force table from Tools/@p punch/Force history or
-    /// Pressure history (empty if neither is given), with its @p tolerance
-    /// and @p max_speed checked.
-    std::vector<std::pair<double, double>>
+    /// A punch's target force tables, one per force window (separated by
+    /// ';'), from Tools/@p punch/Force history or Pressure history (empty if
+    /// neither is given), with its @p tolerance and @p max_speed checked.
+    std::vector<std::vector<std::pair<double, double>>>
     force_table(const Parameters  &prm,
                 const std::string &punch,
                 const std::string &force,
@@ -50,25 +50,37 @@ namespace densify
           "wall/Enabled = true); give a Force history instead");
       const std::string what =
         prefix + (by_force ? "Force history" : "Pressure history");
-      std::vector<std::pair<double, double>> table =
-        parse_table(by_force ? force : pressure, what);
-      if (table.size() < 2)
-        throw std::runtime_error(
-          what + ": give at least two pairs (the force control acts between "
-                 "the first time and the last)");
-      for (auto &[t, value] : table)
+      std::vector<std::vector<std::pair<double, double>>> windows;
+      for (const std::string &text :
+           Utilities::split_string_list(by_force ? force : pressure, ';'))
         {
-          if (t < 0. || t > prm.time.end_time)
-            throw std::runtime_error(what + ": the time " + std::to_string(t) +
-                                     " s lies outside [0, Time stepping/End "
-                                     "time]; give times within the run");
-          if (value < 0.)
+          windows.push_back(parse_table(text, what));
+          auto &table = windows.back();
+          if (table.size() < 2)
             throw std::runtime_error(
-              what + ": " + std::to_string(value) +
-              " is negative; give compressive values (>= 0)");
-          if (by_pressure)
-            value *= numbers::PI / 4. * prm.tools.die_diameter *
-                     prm.tools.die_diameter;
+              what + ": give at least two pairs in each window (the force "
+                     "control acts between its first time and its last)");
+          if (windows.size() > 1 && !(table.front().first >=
+                                      windows[windows.size() - 2].back().first))
+            throw std::runtime_error(
+              what + ": the window '" + text +
+              "' starts before the one before it ends; give the windows "
+              "(separated by ';') in time order");
+          for (auto &[t, value] : table)
+            {
+              if (t < 0. || t > prm.time.end_time)
+                throw std::runtime_error(
+                  what + ": the time " + std::to_string(t) +
+                  " s lies outside [0, Time stepping/End time]; give times "
+                  "within the run");
+              if (value < 0.)
+                throw std::runtime_error(
+                  what + ": " + std::to_string(value) +
+                  " is negative; give compressive values (>= 0)");
+              if (by_pressure)
+                value *= numbers::PI / 4. * prm.tools.die_diameter *
+                         prm.tools.die_diameter;
+            }
         }
       if (!(max_speed >= 0.))
         throw std::runtime_error(
@@ -78,7 +90,7 @@ namespace densify
         throw std::runtime_error(prefix +
                                  "Force tolerance: give a positive relative "
                                  "tolerance (e.g. 1e-3)");
-      return table;
+      return windows;
     }
 
 
@@ -93,8 +105,13 @@ namespace densify
       // the tables are piecewise linear: the punches come closest in
       // [0, End time] at a breakpoint of either or at the end time; the
       // stroke is the travel that takes them there (the lower punch's rise
-      // counts as stroke)
-      const double        end = prm.time.end_time;
+      // counts as stroke). Once a punch is under force control, the
+      // displacement histories go on from where it left them: the force
+      // control itself stops a punch that would meet the other.
+      double end = prm.time.end_time;
+      for (const auto *windows : {&scene.force_table, &scene.lower_force_table})
+        if (!windows->empty())
+          end = std::min(end, windows->front().front().first);
       std::vector<double> times(1, end);
       for (const auto *table : {&scene.punch_table, &scene.lower_table})
         for (const auto &[t, v] : *table)

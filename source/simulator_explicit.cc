@@ -334,8 +334,7 @@ namespace densify
     interval_weight = {{0., 0., 0.}};
     // half the force's gap to the target per station: the station's force
     // lags its move, and closing all of it overshoots
-    punch_control.plan(time, 0.5);
-    lower_control.plan(time, 0.5);
+    plan_punches(time, current_time, 0.5);
     explicit_account = explicit_dynamics->advance(*this, solution, time);
     current_time     = time;
     current_upper    = upper_punch_position(time);
@@ -396,8 +395,9 @@ namespace densify
     if (effects.method != Method::explicit_dynamics ||
         effects.mass_scaling == MassScaling::none)
       return limits;
-    limits.kinetic_ratio   = prm.explicit_dynamics.max_kinetic_ratio;
-    limits.force_imbalance = prm.explicit_dynamics.max_force_imbalance;
+    limits.kinetic_ratio       = prm.explicit_dynamics.max_kinetic_ratio;
+    limits.force_imbalance     = prm.explicit_dynamics.max_force_imbalance;
+    limits.force_control_error = prm.explicit_dynamics.max_force_control_error;
     // the guard judges from the force that gives the compact a mean axial
     // stress of a tenth of the weakest particle's initial yield stress (for
     // laws that do not yield, the stress of an elastic strain of 1e-3) over
@@ -426,14 +426,35 @@ namespace densify
   Simulator::check_quasi_static(const StepStatistics &s,
                                 QuasiStaticGuard     &guard)
   {
-    const std::string breach = guard.add(s);
+    std::string breach = guard.add(s);
+    std::string advice = "raise Explicit/Number of steps (now " +
+                         std::to_string(prm.explicit_dynamics.n_steps) + ")";
+    // a punch under force control that misses its target
+    const double limit = prm.explicit_dynamics.max_force_control_error;
+    for (const auto &[control, punch] :
+         {std::make_pair(&punch_control, "upper"),
+          std::make_pair(&lower_control, "lower")})
+      if (breach.empty() && limit > 0. && control->miss() > limit)
+        {
+          std::ostringstream text;
+          text << "the " << punch << " punch's force missed its target by "
+               << std::setprecision(3) << 100. * control->miss()
+               << " % of the larger of the target and the largest force so "
+                  "far, above Explicit/Maximum force control error = "
+               << 100. * limit << " %";
+          breach = text.str();
+          advice += ", or let the target start at the force the punch "
+                    "carries and change slowly (each station's travel is "
+                    "planned from the last one's force, and a punch turned "
+                    "back unloads elastically, much stiffer than it loaded), "
+                    "or use Solver/Method = implicit";
+        }
     if (breach.empty())
       return;
     std::ostringstream text;
     text << "the explicit run is no longer quasi-static at step " << s.step
-         << " (punch " << s.punch_displacement << " mm): " << breach
-         << "; raise Explicit/Number of steps (now "
-         << prm.explicit_dynamics.n_steps << ")";
+         << " (punch " << s.punch_displacement << " mm): " << breach << "; "
+         << advice;
     if (guard_snapshot.bytes.empty())
       text << "; no earlier station of this run was judged within the "
               "limits, so "

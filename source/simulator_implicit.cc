@@ -4,6 +4,10 @@
 // LoadStepper.
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/component_mask.h>
+
 #include <densify/simulator.h>
 
 #include <algorithm>
@@ -135,9 +139,47 @@ namespace densify
   double
   Simulator::set_loads(const double time, const double increment)
   {
-    punch_control.plan(time);
-    lower_control.plan(time);
+    plan_punches(time, time - increment, 1.);
     return apply_loads(time, increment);
+  }
+
+
+
+  void
+  Simulator::plan_punches(const double time,
+                          const double before,
+                          const double gain)
+  {
+    // the punch that follows a force plans after the one that moves by its
+    // history (with both under force control, neither knows the other's)
+    const bool upper_follows = punch_control.force_controlled(time) &&
+                               !lower_control.force_controlled(time);
+    PunchControl &first  = upper_follows ? lower_control : punch_control;
+    PunchControl &second = upper_follows ? punch_control : lower_control;
+    first.plan(time, gain);
+    const double other = first.travel(time) - first.travel(before);
+    const bool   follows =
+      second.force_controlled(time) && !first.force_controlled(time);
+    second.plan(time, gain, follows ? other : 0.);
+    // the lower punch's rise lifts the compact, the upper punch's advance
+    // lowers it
+    rigid_shift = !follows ? 0. : upper_follows ? other : -other;
+  }
+
+
+
+  bool
+  Simulator::rigid_predictor(TrilinosWrappers::MPI::Vector &increment)
+  {
+    if (rigid_shift == 0.)
+      return false;
+    ComponentMask axial(3, false);
+    axial.set(2, true);
+    for (const types::global_dof_index i :
+         DoFTools::extract_dofs(dof_handler, axial))
+      increment[i] = rigid_shift;
+    increment.compress(VectorOperation::insert);
+    return true;
   }
 
 

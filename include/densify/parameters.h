@@ -286,6 +286,10 @@ namespace densify
     /// punch's plus the die wall's, each a mean over the last ten stations,
     /// as a fraction of the upper punch force (0: not checked).
     double max_force_imbalance = 0.5;
+    /// Largest miss of a force-controlled punch's target at a station, as a
+    /// fraction of the larger of the target and the largest force so far
+    /// (0: not checked).
+    double max_force_control_error = 0.1;
   };
 
   /// Subsection "Output": where and what to write.

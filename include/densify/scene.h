@@ -22,15 +22,16 @@ namespace densify
     double upper_initial = 0.;
     /// Downward punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> punch_table;
-    /// The upper punch's target force against time (s, N; empty: none).
-    std::vector<std::pair<double, double>> force_table;
+    /// The upper punch's target force against time (s, N), one table per
+    /// force window (empty: none).
+    std::vector<std::vector<std::pair<double, double>>> force_table;
     /// Sideways (x) upper punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> lateral_table;
     /// Upward lower punch displacement against time (s, mm).
     std::vector<std::pair<double, double>> lower_table;
-    /// The lower punch's target (upward) force against time (s, N; empty:
-    /// none).
-    std::vector<std::pair<double, double>> lower_force_table;
+    /// The lower punch's target (upward) force against time (s, N), one
+    /// table per force window (empty: none).
+    std::vector<std::vector<std::pair<double, double>>> lower_force_table;
     /// Upward die displacement against time (s, mm).
     std::vector<std::pair<double, double>> die_table;
     /// Height of the die's top edge (mm; infinity: none).

@@ -283,6 +283,8 @@ namespace densify
     set_loads(const double time, const double increment) override;
     bool
     loads_reached(double &scale) override;
+    bool
+    rigid_predictor(TrilinosWrappers::MPI::Vector &increment) override;
     double
     evaluate_constraints() override;
     void
@@ -293,6 +295,12 @@ namespace densify
     restore_state() override;
     void
     commit() override;
+
+    /// Plan both punches' moves from @p before to @p time (PunchControl::
+    /// plan() with @p gain): a force-controlled punch gives back the other,
+    /// displacement-controlled punch's travel over the move.
+    void
+    plan_punches(const double time, const double before, const double gain);
 
     /// Set the tools, body force and friction scale for time @p time,
     /// reached by an increment of @p increment (both methods; the upper
@@ -461,6 +469,11 @@ namespace densify
     double current_time = 0., current_upper = 0.;
     /// The time of the load being solved for (s).
     double load_time = 0.;
+    /// The axial (z) translation of the whole compact that the planned
+    /// move imposes (mm): the travel of the punch that moves by its history
+    /// while the other follows it by force control (plan_punches()); 0
+    /// otherwise.
+    double rigid_shift = 0.;
 
     /// The effects of the scene, resolved once.
     Effects effects;

@@ -38,11 +38,15 @@ namespace densify
                                StepCounts         &counts)
   {
     const double travel = problem.set_loads(time, time - current_time);
-    // predictor: extrapolate the last increment in proportion to the load's
-    // travel
+    // predictor: the rigid motion the loads impose, else the last increment
+    // extrapolated in proportion to the load's travel
     TrilinosWrappers::MPI::Vector      &solution = problem.solution_vector();
     const TrilinosWrappers::MPI::Vector start    = solution;
-    if (last_travel > 0)
+    TrilinosWrappers::MPI::Vector       rigid(solution);
+    rigid = 0.;
+    if (problem.rigid_predictor(rigid))
+      solution += rigid;
+    else if (last_travel > 0)
       solution.add(travel / last_travel, last_increment);
 
     double violation = 0.;

@@ -23,11 +23,11 @@ namespace densify
 
 
   PunchControl::PunchControl(
-    const std::vector<std::pair<double, double>> &displacement,
-    const std::vector<std::pair<double, double>> &force,
-    const double                                  tolerance,
-    const double                                  trial_travel,
-    const double                                  max_speed)
+    const std::vector<std::pair<double, double>>              &displacement,
+    const std::vector<std::vector<std::pair<double, double>>> &force,
+    const double                                               tolerance,
+    const double                                               trial_travel,
+    const double                                               max_speed)
     : displacement(displacement)
     , force(force)
     , tolerance(tolerance)
@@ -42,10 +42,23 @@ namespace densify
   bool
   PunchControl::force_controlled(const double t) const
   {
-    if (force.empty())
-      return false;
     const double eps = time_epsilon * std::max(1., std::abs(t));
-    return t > force.front().first + eps && t <= force.back().first + eps;
+    for (const auto &table : force)
+      if (t > table.front().first + eps && t <= table.back().first + eps)
+        return true;
+    return false;
+  }
+
+
+
+  const std::vector<std::pair<double, double>> *
+  PunchControl::window(const double t) const
+  {
+    const double eps = time_epsilon * std::max(1., std::abs(t));
+    for (const auto &table : force)
+      if (t >= table.front().first - eps && t <= table.back().first + eps)
+        return &table;
+    return nullptr;
   }
 
 
@@ -53,7 +66,8 @@ namespace densify
   double
   PunchControl::target(const double t) const
   {
-    return force.empty() ? 0. : interpolate(force, t);
+    const auto *table = window(t);
+    return table == nullptr ? 0. : interpolate(*table, t);
   }
 
 
@@ -82,9 +96,12 @@ namespace densify
 
 
   void
-  PunchControl::plan(const double t_end, const double gain)
+  PunchControl::plan(const double t_end,
+                     const double gain,
+                     const double other_travel)
   {
     t1     = t_end;
+    other  = other_travel;
     has_lo = has_hi = false;
     last_side       = 0;
     if (!force_controlled(t1))
@@ -92,27 +109,29 @@ namespace densify
         d1 = displacement_travel(t1);
         return;
       }
-    // the accepted state is one end of the bracket: a move that stays there
-    // carries its force
+    // the accepted state is one end of the bracket when nothing else moves:
+    // a move that stays there carries its force
     const double target_force = target(t1);
-    if (f0 < target_force)
+    if (other == 0. && f0 < target_force)
       {
         lo_d   = d0;
         lo_f   = f0;
         has_lo = true;
       }
-    else if (f0 > target_force)
+    else if (other == 0. && f0 > target_force)
       {
         hi_d   = d0;
         hi_f   = f0;
         has_hi = true;
       }
-    // the secant stiffness's prediction, no faster than the largest speed
-    double move = 0.;
+    // the secant stiffness's prediction, no faster than the largest speed;
+    // the other punch's travel given back in full (the compact moves with
+    // it)
+    double move = -other;
     if (stiffness > 0.)
-      move = gain * (target_force - f0) / stiffness;
+      move += gain * (target_force - f0) / stiffness;
     else if (target_force != f0)
-      move = (target_force > f0 ? 1. : -1.) * trial_travel;
+      move += (target_force > f0 ? 1. : -1.) * trial_travel;
     d1 = d0 + std::clamp(move, -max_move(), max_move());
   }
 
@@ -164,27 +183,37 @@ namespace densify
     else
       {
         // no bracket yet (e.g. before the first contact): the secant through
-        // the accepted state, at most four times this move's length further,
-        // else twice the move
+        // the accepted state, at most four times this move's length further;
+        // where that secant does not rise (the other punch moved the compact
+        // on, and the force fell meanwhile) the last secant stiffness of two
+        // accepted states; else twice the move
         const double direction = side < 0 ? 1. : -1.;
-        double       length    = std::abs(d1 - d0);
-        if (length < 1e-12 * std::max(1., std::abs(d0)))
-          length = trial_travel;
+        // the travel that would carry the accepted force
+        const double base   = d0 - other;
+        double       length = std::abs(d1 - base);
+        // a punch that carries nothing (off the compact) moves at least the
+        // trial travel
+        if (length < 1e-12 * std::max(1., std::abs(d0)) || f <= 0.)
+          length = std::max(length, trial_travel);
         double next = d1 + direction * length;
-        if (std::abs(d1 - d0) > 0. && (f - f0) / (d1 - d0) > 0.)
+        if (std::abs(d1 - base) > 0. && (f - f0) / (d1 - base) > 0.)
           {
             const double secant =
-              d1 + (target_force - f) * (d1 - d0) / (f - f0);
+              d1 + (target_force - f) * (d1 - base) / (f - f0);
             if ((secant - d1) * direction > 0.)
               next =
                 d1 + direction * std::min(std::abs(secant - d1), 4. * length);
           }
+        else if (other != 0. && f > 0. && stiffness > 0.)
+          next = d1 + (target_force - f) / stiffness;
         d1 = next;
       }
     d1        = std::clamp(d1, d0 - max_move(), d0 + max_move());
     last_side = side;
-    // the new move against the tried one, from the accepted state
-    if (std::abs(tried - d0) > 1e-12 * std::max(1., std::abs(d0)))
+    // the new move against the tried one, from the accepted state (when
+    // the other punch moves too, the tried solve's end is the start)
+    if (other == 0. &&
+        std::abs(tried - d0) > 1e-12 * std::max(1., std::abs(d0)))
       scale = std::clamp((d1 - d0) / (tried - d0), 0., 5.);
     return false;
   }
@@ -202,16 +231,32 @@ namespace densify
   void
   PunchControl::accept(const double f)
   {
-    if (std::abs(d1 - d0) > 1e-12 * std::max(1., std::abs(d0)) &&
-        (f - f0) / (d1 - d0) > 0.)
-      stiffness = (f - f0) / (d1 - d0);
-    d_prev   = d0;
-    has_prev = true;
+    // the compact's compression over the move: both punches' travels
+    const double compression = d1 - d0 + other;
+    if (std::abs(compression) > 1e-12 * std::max(1., std::abs(d0)) &&
+        (f - f0) / compression > 0.)
+      stiffness = (f - f0) / compression;
+    other        = 0.;
+    d_prev       = d0;
+    has_prev     = true;
+    window_moves = force_controlled(t1) ? window_moves + 1 : 0;
     if (force_controlled(t1))
       offset = d1 - interpolate(displacement, t1);
     t0          = t1;
     d0          = d1;
     f0          = f;
     force_scale = std::max(force_scale, std::abs(f));
+  }
+
+
+
+  double
+  PunchControl::miss() const
+  {
+    if (window_moves < 2)
+      return 0.;
+    const double target_force = target(t0);
+    const double scale        = std::max(std::abs(target_force), force_scale);
+    return scale > 0. ? std::abs(f0 - target_force) / scale : 0.;
   }
 } // namespace densify

@@ -298,6 +298,34 @@ namespace densify
       << " mm: peak force " << c[1][peak] << " N (" << c[3][peak]
       << " MPa over the bore) at a rise of " << c[2][peak] << " mm; "
       << c[1][last] << " N at the end\n";
+    // out of the die at the end (the wall carries nothing): the compact's
+    // springback against the farthest stroke, now free radially
+    try
+      {
+        const std::vector<std::vector<double>> e =
+          read_columns(statistics_csv,
+                       {"die_wall_radial_force",
+                        "punch_displacement",
+                        "compact_height",
+                        "compact_diameter",
+                        "envelope_density"});
+        const std::size_t full =
+          std::max_element(e[1].begin(), e[1].end()) - e[1].begin();
+        if (e[0][last] == 0. && full < first)
+          {
+            const auto percent = [](const double after, const double before) {
+              return 100 * (after - before) / before;
+            };
+            s << "Out of the die after the ejection: compact height "
+              << e[2][last] << " mm, diameter " << e[3][last]
+              << " mm (from the farthest stroke: axial "
+              << percent(e[2][last], e[2][full]) << " %, radial "
+              << percent(e[3][last], e[3][full]) << " %); envelope density "
+              << 100 * e[4][full] << " -> " << 100 * e[4][last] << " %\n";
+          }
+      }
+    catch (const std::exception &)
+      {}
     return s.str();
   }
 

@@ -16,7 +16,8 @@ namespace densify
   bool
   QuasiStaticGuard::active() const
   {
-    return limits.kinetic_ratio > 0. || limits.force_imbalance > 0.;
+    return limits.kinetic_ratio > 0. || limits.force_imbalance > 0. ||
+           limits.force_control_error > 0.;
   }
 
 

@@ -25,7 +25,13 @@
 #      agree.
 #   7. Bad input stops with exit 2 and one line naming the parameter: a
 #      force and a pressure history together, a negative force, a pressure
-#      without the die (for either punch).
+#      without the die (for either punch), force windows out of time order,
+#      a window of one pair.
+#   8. Two force windows (Force history 0.2:100, 0.4:100; 0.6:150,
+#      0.8:150, Maximum speed = 1 mm/s): steps 3-4 carry 100 N and steps
+#      7-8 150 N within the tolerance; between and after the windows
+#      (steps 5-6, 9-10) the displacement history moves the punch by 0.002
+#      mm a step.
 set -u
 cd "$WORK_DIR"
 fails=0
@@ -133,4 +139,28 @@ bad_input "Tools/Lower punch/Pressure history: give either" \
   --set "Tools/Lower punch/Pressure history=0.4:1, 0.8:2"
 bad_input "Tools/Lower punch/Force history: -5.* is negative" \
   --set "Tools/Lower punch/Force history=0.4:100, 0.8:-5"
+bad_input "Tools/Upper punch/Force history: the window .* starts before" \
+  --set "Tools/Upper punch/Force history=0.4:100, 0.6:100; 0.5:150, 0.8:150"
+bad_input "Tools/Upper punch/Force history: give at least two pairs in each window" \
+  --set "Tools/Upper punch/Force history=0.2:100; 0.6:150, 0.8:150"
+
+# two force windows
+"$DENSIFY" "$scene" --set "Output/Interval=0" --set "Time stepping/Number of steps=10" \
+  --set "Tools/Upper punch/Force history=0.2:100, 0.4:100; 0.6:150, 0.8:150" \
+  "${fast[@]}" --set "Output/Directory=windows" > windows.log 2>&1 ||
+  { echo "FAIL two windows"; tail -n 5 windows.log; fails=$((fails + 1)); }
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { d[$1] = $c["punch_displacement"]; f[$1] = $c["upper_punch_force"]
+    if (f[$1] > fmax) fmax = f[$1] }
+  function abs(x) { return x < 0 ? -x : x }
+  END {
+    split("3 4 7 8", step, " "); split("100 100 150 150", target, " ")
+    for (k = 1; k <= 4; ++k) { s = step[k]; scale = target[k] > fmax ? target[k] : fmax
+      if (abs(f[s] - target[k]) > 1e-3 * scale) { print "FAIL windows step " s ": " f[s] " N, target " target[k]; bad++ } }
+    split("5 6 9 10", moved, " ")
+    for (k = 1; k <= 4; ++k) { s = moved[k]
+      if (abs(d[s] - d[s - 1] - 0.002) > 1e-9) { print "FAIL windows step " s " moved " d[s] - d[s - 1] " mm, not 0.002"; bad++ } }
+    printf "two windows: %.6g %.6g N, then +%.6g +%.6g mm; %.6g %.6g N, then +%.6g +%.6g mm\n",
+      f[3], f[4], d[5] - d[4], d[6] - d[5], f[7], f[8], d[9] - d[8], d[10] - d[9]
+    exit bad > 0 }' windows/statistics.csv || fails=$((fails + 1))
 exit $((fails > 0))

@@ -46,6 +46,20 @@ namespace densify
       return true;
     }
 
+    /**
+     * After set_loads(): a rigid motion that the increment's loads impose on
+     * the whole system (e.g. a compact that both punches carry along), to
+     * start the solve from instead of the last increment extrapolated. Adds
+     * it to @p increment (zero on entry) and returns true, or returns false
+     * if the loads impose none.
+     */
+    virtual bool
+    rigid_predictor(TrilinosWrappers::MPI::Vector &increment)
+    {
+      (void)increment;
+      return false;
+    }
+
     /// Evaluate the constraints at the current solution (e.g. the contact
     /// forces); returns their largest violation (e.g. penetration, mm).
     virtual double

@@ -13,14 +13,15 @@ namespace densify
   /**
    * Where a punch is at each time, as its travel (the upper punch's
    * downward, the lower punch's upward: the direction in which its force
-   * grows). Outside the force window (the times of the force history,
-   * (t_first, t_last]) the punch follows the displacement history; after
-   * the window, that history continues from where the force control left
-   * the punch (shifted by a constant), so the travel is continuous at both
-   * switches. Within the window, each move (an
-   * implicit increment or an explicit station) starts from the last
-   * accepted state (time, travel, force) and plans its end travel from the
-   * target force and the secant stiffness of the last two accepted states;
+   * grows). Outside the force windows (the times of each of the force
+   * history's tables, (t_first, t_last]) the punch follows the displacement
+   * history; after a window, that history continues from where the force
+   * control left the punch (shifted by a constant), so the travel is
+   * continuous at both switches. Within a window, each move (an implicit
+   * increment or an explicit station) starts from the last accepted state
+   * (time, travel, force) and plans its end travel from the target force,
+   * the secant stiffness of the last two accepted states and the other
+   * punch's travel over the move;
    * the implicit method then corrects the travel by a bracketing secant
    * (regula falsi) until the punch carries the target within the tolerance
    * (correct()), the explicit method accepts the station as it came and
@@ -35,25 +36,26 @@ namespace densify
 
     /**
      * @p displacement the downward travel against time (s:mm), @p force the
-     * target compressive force against time (s:N; empty: displacement
-     * control throughout), @p tolerance the relative force tolerance (of the
-     * larger of the target and the largest force so far), @p trial_travel
-     * the first move (mm) where no stiffness is known yet (before the first
-     * contact), @p max_speed the punch's largest speed under force control
-     * (mm/s): a target that needs more travel in a move is approached at
-     * it, as a servo press does.
+     * target compressive force against time (s:N), one table per force
+     * window (empty: displacement control throughout), @p tolerance the
+     * relative force tolerance (of the larger of the target and the largest
+     * force so far), @p trial_travel the first move (mm) where no stiffness is
+     * known yet (before the first contact), @p max_speed the punch's largest
+     * speed under force control (mm/s): a target that needs more travel in a
+     * move is approached at it, as a servo press does.
      */
-    PunchControl(const std::vector<std::pair<double, double>> &displacement,
-                 const std::vector<std::pair<double, double>> &force,
-                 const double                                  tolerance,
-                 const double                                  trial_travel,
-                 const double                                  max_speed);
+    PunchControl(
+      const std::vector<std::pair<double, double>>              &displacement,
+      const std::vector<std::vector<std::pair<double, double>>> &force,
+      const double                                               tolerance,
+      const double                                               trial_travel,
+      const double                                               max_speed);
 
     /// Whether a move that ends at @p t is force-controlled.
     bool
     force_controlled(const double t) const;
 
-    /// The target force at @p t (N; 0 outside the force history).
+    /// The target force at @p t (N; 0 outside the force windows).
     double
     target(const double t) const;
 
@@ -61,12 +63,20 @@ namespace densify
     double
     travel(const double t) const;
 
-    /// Start a move from the accepted state to the time @p t_end: plan its
-    /// end travel, closing the fraction @p gain of the force's gap to the
-    /// target by the secant stiffness (the explicit method, which cannot
-    /// correct a move, takes less than all of it against overshooting).
+    /**
+     * Start a move from the accepted state to the time @p t_end: plan its
+     * end travel, closing the fraction @p gain of the force's gap to the
+     * target by the secant stiffness (the explicit method, which cannot
+     * correct a move, takes less than all of it against overshooting).
+     * @p other_travel is the other punch's travel over the move towards
+     * this one (mm; e.g. the lower punch's rise for the upper punch): it
+     * presses the compact as this punch's own travel does, so the plan
+     * gives it back (a punch holding a force follows an ejected compact).
+     */
     void
-    plan(const double t_end, const double gain = 1.);
+    plan(const double t_end,
+         const double gain         = 1.,
+         const double other_travel = 0.);
 
     /**
      * After a converged solve of the planned move, whose punch carried
@@ -85,13 +95,20 @@ namespace densify
     void
     accept(const double force);
 
+    /// The accepted force's miss of its target, as a fraction of the larger
+    /// of the target and the largest force so far; 0 after a
+    /// displacement-controlled move or the first move of a force window
+    /// (which starts from the state before the window).
+    double
+    miss() const;
+
     /// The checkpoint's state.
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
       archive &t0 &d0 &f0 &d_prev &has_prev &stiffness &offset &force_scale &t1
-        &d1;
+        &d1 &window_moves;
     }
 
   private:
@@ -103,11 +120,16 @@ namespace densify
     double
     displacement_travel(const double t) const;
 
-    std::vector<std::pair<double, double>> displacement;
-    std::vector<std::pair<double, double>> force;
-    double                                 tolerance    = 1e-3;
-    double                                 trial_travel = 0.;
-    double                                 max_speed    = 0.;
+    /// The force window that holds @p t (its times [first, last]), or
+    /// nullptr.
+    const std::vector<std::pair<double, double>> *
+    window(const double t) const;
+
+    std::vector<std::pair<double, double>>              displacement;
+    std::vector<std::vector<std::pair<double, double>>> force;
+    double                                              tolerance    = 1e-3;
+    double                                              trial_travel = 0.;
+    double                                              max_speed    = 0.;
 
     /// The accepted state: time, travel, force.
     double t0 = 0., d0 = 0., f0 = 0.;
@@ -117,12 +139,17 @@ namespace densify
     /// The last positive secant stiffness of two accepted states (N/mm;
     /// 0: none yet).
     double stiffness = 0.;
+    /// The accepted moves of the current force window (0 outside one).
+    unsigned int window_moves = 0;
     /// The shift of the displacement history after the window (mm).
     double offset = 0.;
     /// The largest force accepted so far (N).
     double force_scale = 0.;
     /// The planned move's end time and travel.
     double t1 = 0., d1 = 0.;
+    /// The other punch's travel over the planned move (mm): the travel of
+    /// this punch that carries the accepted force is d0 - other.
+    double other = 0.;
 
     /// The tries of the current move: the largest travel that carried less
     /// than the target, the smallest that carried more, and the side the

@@ -137,8 +137,11 @@ namespace densify
    * on the lower punch over the rows in the phase eject, the lower punch's
    * rise in the die at it (lower_punch_displacement - die_displacement),
    * and the force when the last row ends (the travel curve is
-   * lower_punch_force against that rise over those rows). "" if no row
-   * ejects.
+   * lower_punch_force against that rise over those rows). If the die wall
+   * carries nothing at the last row (the compact is out of the die), a
+   * second line: the compact's height, diameter and envelope density there
+   * against the farthest stroke's (its springback out of the die). "" if
+   * no row ejects.
    */
   std::string
   ejection_summary(const std::string &statistics_csv);

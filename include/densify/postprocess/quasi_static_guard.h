@@ -28,6 +28,10 @@ namespace densify
      * punch; the limits speak of the compaction, not of the rearrangement.
      */
     double load_floor = 0.;
+    /// Largest miss of a force-controlled punch's target
+    /// (PunchControl::miss()); checked by the Simulator, which knows the
+    /// punches.
+    double force_control_error = 0.;
   };
 
   /**

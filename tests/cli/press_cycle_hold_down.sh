@@ -1,0 +1,73 @@
+# The whole ejection (prm/press_cycle_sn_light.prm's hold-down; doc/
+# user_guide.md, "A press cycle"), shrunk as tests/cli/press_cycle.sh
+# shrinks the cycle (a 0.6 mm mesh, a 7.52 mm die, 23 steps of 20 ms): the
+# seven tin spheres pressed by 0.7 mm, held at 20 MPa by pressure control,
+# released to 0.5 MPa, then the lower punch raised by 2.7 mm in 10 steps
+# while the upper punch holds 0.5 MPa and so follows the compact out of the
+# die. Implicit, 1 rank. (The scene's punch leaves the compact before the
+# hold-down, which is its second pressure window; cli.press_cycle tests
+# that unloading, cli.force_control the windows.)
+#   1. In the eject rows the upper punch carries the hold-down within the
+#      force tolerance (1e-3 of the largest force so far). At the last row
+#      the compact is out of the die: the die wall carries nothing, the
+#      lower punch's face is above the die's top (2.5 mm), and the lower
+#      punch carries what the upper one does.
+#   2. The summary has the line of the compact out of the die, with a
+#      positive radial springback (the die held the compact in) and an
+#      envelope density below the one at full load.
+#   3. The same cycle by the explicit method (Explicit/Number of steps=6000)
+#      stops with exit 1 and the quasi-static guard's line (Explicit/Maximum
+#      force control error): the hold at 20 MPa, just below the force the
+#      loading reached, turns the punch back, and the station planned with
+#      the loading's secant stiffness unloads the compact (0 N), the next
+#      one misses by about half; the line names the error and what to
+#      change (Explicit/Number of steps, the target, the implicit
+#      method).
+set -u
+cd "$WORK_DIR"
+fails=0
+cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=23"
+  --set "Tools/Die wall/Diameter=7.52"
+  --set "Tools/Upper punch/Displacement history=0:0, 0.2:0.7"
+  --set "Tools/Upper punch/Pressure history=0.2:20, 0.22:20, 0.26:0.5, 0.46:0.5"
+  --set "Tools/Upper punch/Maximum speed=20"
+  --set "Tools/Lower punch/Displacement history=0:0, 0.26:0, 0.46:2.7"
+  --set "Time stepping/End time=0.46" --set "Time stepping/Number of steps=23")
+scene="$SOURCE_DIR/prm/press_cycle_sn_light.prm"
+"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=out" > out.log 2>&1 ||
+  { echo "FAIL the cycle"; tail -n 5 out.log; fails=$((fails + 1)); }
+# 0.5 MPa over the 7.52 mm bore
+hold=$(awk 'BEGIN { printf "%.10g", 0.5 * atan2(0, -1) / 4 * 7.52 * 7.52 }')
+awk -F, -v hold="$hold" 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  function abs(x) { return x < 0 ? -x : x }
+  { if ($c["upper_punch_force"] > largest) largest = $c["upper_punch_force"]
+    if ($c["phase"] == 3) { ejected++
+      dev = abs($c["upper_punch_force"] - hold)
+      if (dev > worst) worst = dev
+      if (dev > 1e-3 * largest) { print "FAIL step " $1 ": the upper punch carries " $c["upper_punch_force"] " N, not " hold; bad++ } }
+    last_radial = $c["die_wall_radial_force"]; rise = $c["lower_punch_displacement"]
+    upper = $c["upper_punch_force"]; lower = $c["lower_punch_force"] }
+  END {
+    if (ejected != 10) { print "FAIL " ejected " eject rows, not 10"; bad++ }
+    if (last_radial != 0) { print "FAIL the die wall still carries " last_radial " N"; bad++ }
+    if (!(rise > 2.5)) { print "FAIL the lower punch rose only " rise " mm"; bad++ }
+    if (abs(lower - upper) > 1e-3 * largest) { print "FAIL lower " lower " N against upper " upper " N"; bad++ }
+    printf "hold-down %.4g N: largest deviation %.3g N in %d eject rows (tolerance %.3g N)\n", hold, worst, ejected, 1e-3 * largest
+    printf "at the end: die wall %g N, lower punch risen %g mm, upper %.5g N, lower %.5g N\n", last_radial, rise, upper, lower
+    exit bad > 0 }' out/statistics.csv || fails=$((fails + 1))
+line=$(grep "^Out of the die after the ejection" out.log)
+echo "$line"
+echo "$line" | awk '{ for (i = 1; i <= NF; ++i) { if ($i == "radial") r = $(i + 1); if ($i == "->") { d0 = $(i - 1); d1 = $(i + 1) } }
+  if (!(r > 0) || !(d1 < d0)) exit 1 }' ||
+  { echo "FAIL no out-of-die line with a positive radial springback and a lower density"; fails=$((fails + 1)); }
+
+# explicit: the pressure control's miss stops the run
+"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=explicit" \
+  --set Solver/Method=explicit --set "Explicit/Number of steps=6000" > explicit.log 2>&1
+status=$?
+line=$(grep "error:" explicit.log)
+echo "explicit, 6000 steps: exit $status: $line"
+[ "$status" = 1 ] && echo "$line" | grep -q "upper punch's force missed its target by .* above Explicit/Maximum force control error = 10 %" &&
+  echo "$line" | grep -q "raise Explicit/Number of steps (now 6000), or let the target start" ||
+  { echo "FAIL the explicit run with too few steps does not stop on its force control"; tail -n 3 explicit.log; fails=$((fails + 1)); }
+exit $fails
