@@ -8,6 +8,14 @@
 
 namespace densify
 {
+  namespace
+  {
+    /// The largest ratio of an increment's load travel to the last one's by
+    /// which the predictor extrapolates the last increment (a cut-back's
+    /// retry has 1/2, the step after it 2).
+    constexpr double max_extrapolation = 4.;
+  } // namespace
+
   LoadStepper::LoadStepper(const LoadStepperControl &control,
                            NewtonSolver             &newton,
                            ConditionalOStream       &out)
@@ -39,14 +47,17 @@ namespace densify
   {
     const double travel = problem.set_loads(time, time - current_time);
     // predictor: the rigid motion the loads impose, else the last increment
-    // extrapolated in proportion to the load's travel
+    // extrapolated in proportion to the load's travel, unless this travel is
+    // far larger than the last one's (after a hold, whose increment is the
+    // compact's relaxation and its travel round-off, the ratio would blow
+    // that up by orders of magnitude)
     TrilinosWrappers::MPI::Vector      &solution = problem.solution_vector();
     const TrilinosWrappers::MPI::Vector start    = solution;
     TrilinosWrappers::MPI::Vector       rigid(solution);
     rigid = 0.;
     if (problem.rigid_predictor(rigid))
       solution += rigid;
-    else if (last_travel > 0)
+    else if (last_travel > 0 && travel <= max_extrapolation * last_travel)
       solution.add(travel / last_travel, last_increment);
 
     double violation = 0.;
