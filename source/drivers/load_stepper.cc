@@ -12,8 +12,8 @@ namespace densify
   {
     /// The largest ratio of an increment's load travel to the last one's by
     /// which the predictor extrapolates the last increment (a cut-back's
-    /// retry has 1/2, the step after it 2).
-    constexpr double max_extrapolation = 4.;
+    /// retry has 1/2, the step after a cut-back to 1/64 64).
+    constexpr double max_extrapolation = 100.;
   } // namespace
 
   LoadStepper::LoadStepper(const LoadStepperControl &control,
