@@ -164,6 +164,16 @@ namespace densify
     // the lower punch's rise lifts the compact, the upper punch's advance
     // lowers it
     rigid_shift = !follows ? 0. : upper_follows ? other : -other;
+    // a compact that nothing presses from above rides on a rising lower
+    // punch (the ejection with the upper punch withdrawn): the die wall's
+    // friction then slips rather than the lower punch indenting the compact
+    const double rise =
+      lower_control.travel(time) - lower_control.travel(before);
+    const double upper_advance =
+      punch_control.travel(time) - punch_control.travel(before);
+    if (!follows && rise > 0. && upper_advance <= 0. &&
+        punch_control.accepted_force() == 0.)
+      rigid_shift = rise;
   }
 
 

@@ -95,6 +95,13 @@ namespace densify
     void
     accept(const double force);
 
+    /// The force the punch carries at the accepted state (N).
+    double
+    accepted_force() const
+    {
+      return f0;
+    }
+
     /// The accepted force's miss of its target, as a fraction of the larger
     /// of the target and the largest force so far; 0 after a
     /// displacement-controlled move or the first move of a force window
