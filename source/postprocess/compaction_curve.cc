@@ -292,6 +292,11 @@ namespace densify
       }
     catch (const std::exception &)
       {}
+    // the rise where the punch stood still is its history's round-off in
+    // time (e.g. 7e-16 mm): printed as 0
+    for (double &rise : c[2])
+      if (std::abs(rise) < 1e-12)
+        rise = 0.;
     std::ostringstream s;
     s << std::setprecision(4) << "Ejection over a lower punch rise of "
       << c[2][first > 0 ? first - 1 : first] << " -> " << c[2][last]
