@@ -10,13 +10,12 @@
 // it carries a pressure, and the circle's radius (a = 0.10-0.12 mm) spans
 // three of the 0.04 mm elements (measured -8.0 % and -7.1 %).
 //
-// The poles are refined to 0.04 mm (prm/hertz.prm: 0.03 mm). At delta/R =
-// 0.0128 the contact radius (0.11 mm) spans fewer than three such elements
-// and the force is 4.2 % below Hertz; on the 0.03 mm mesh it is within
-// 2.6 % (benchmarks/particle_hertz.sh, 3 minutes, which presses in three
-// steps; doc/verification.md). This test goes straight to the two checked
-// states, delta = 0.032 and 0.048 mm: the stack is elastic and frictionless,
-// so they do not depend on the path.
+// The poles are refined to 0.04 mm (prm/hertz.prm: 0.03 mm). At the first
+// step, delta/R = 0.0128, the contact radius (0.11 mm) spans fewer than
+// three such elements and the force is 4.2 % below Hertz: that step is a
+// preload here, printed but not held to 3 %; on the 0.03 mm mesh it is
+// within 2.6 % (benchmarks/particle_hertz.sh, 3 minutes;
+// doc/verification.md).
 //
 // Contact/Hold poles on axis = true keeps the frictionless column from
 // buckling sideways and holds the spin about the axis, which frictionless
@@ -48,9 +47,7 @@ main(int argc, char **argv)
                       {"Output/Directory=output",
                        "Output/Interval=0",
                        "Particles/Centres=0,0,1.25; 0,0,3.75",
-                       "Tools/Upper punch/Displacement history=0:0, "
-                       "0.5:0.032, 1:0.048",
-                       "Time stepping/Number of steps=2",
+                       "Tools/Upper punch/Displacement history=0:0, 1:0.048",
                        "Mesh/Refined element size=0.04",
                        "Solver/Linear solver=direct",
                        "Contact/Hold poles on axis=true"});
@@ -72,19 +69,21 @@ main(int argc, char **argv)
       const double transmitted =
         std::abs(s.particle_contact_force - s.upper_punch_force) /
         s.upper_punch_force;
+      const bool preload = delta / R < 0.02;
       // the contact circle's area pi a^2, a^2 = R* d = (R / 2) (delta / 2),
       // on both spheres, over their surface 2 x 4 pi R^2
       const double area_hertz = delta / (16 * R);
       const double area_error =
         (s.contact_area_fraction - area_hertz) / area_hertz;
-      ok = ok && std::abs(error) < 0.03 && transmitted < 1e-3 &&
-           std::abs(area_error) < 0.15 &&
+      ok = ok && (preload || std::abs(error) < 0.03) && transmitted < 1e-3 &&
+           (preload || std::abs(area_error) < 0.15) &&
            std::abs(s.upper_punch_force - s.lower_punch_force) <
              1e-6 * s.upper_punch_force;
       if (root)
         std::cout << std::setprecision(6) << delta / R << ' '
                   << s.upper_punch_force << ' ' << F_hertz << ' '
                   << std::setprecision(3) << 100 * error
+                  << (preload ? " (preload, not checked)" : "")
                   << "  sphere-sphere force = punch force to 1e-3: "
                   << (transmitted < 1e-3 ? "yes" : "NO")
                   << ", pole and spin springs " << std::setprecision(2)
@@ -97,7 +96,7 @@ main(int argc, char **argv)
   if (root)
     std::cout << (ok ?
                     "particle_hertz: force within 3 % and contact area within "
-                    "15 % of Hertz" :
+                    "15 % of Hertz after the preload" :
                     "particle_hertz: FAILED")
               << std::endl;
   return ok ? 0 : 1;
