@@ -12,7 +12,8 @@ namespace densify
   {
     /// The largest ratio of an increment's load travel to the last one's by
     /// which the predictor extrapolates the last increment (a cut-back's
-    /// retry has 1/2, the step after a cut-back to 1/64 64).
+    /// retry has 1/2; a full step after an increment cut back to 1/64 has
+    /// 64).
     constexpr double max_extrapolation = 100.;
   } // namespace
 
