@@ -440,11 +440,14 @@ namespace densify
       prm.add_parameter(
         "Force tolerance",
         tools.force_tolerance,
-        "Relative tolerance of the force control: the implicit method "
-        "moves the punch until its force is within this fraction of the "
-        "larger of the target and the largest force so far (> 0). The "
-        "explicit method corrects each station's travel from the last "
-        "one's force instead.");
+        "Relative tolerance of the force control (dimensionless, > 0): the "
+        "implicit method moves the punch until its force is within this "
+        "fraction of the larger of the target and the largest force so far. "
+        "Under "
+        "the explicit method the punch is a rigid body pushed by the target "
+        "less its contact force at every explicit step, and the quasi-static "
+        "guard bounds its miss instead (Explicit/Maximum force control "
+        "error).");
       prm.add_parameter(
         "Maximum speed",
         tools.max_speed,

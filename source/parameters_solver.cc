@@ -276,10 +276,10 @@ namespace densify
         "at most this fraction of the larger of the target and the largest "
         "punch force so far, from the second station of each force window "
         "on (the first starts from the state before the window); "
-        "dimensionless, 0 <= r <= 10; 0: not checked. The explicit method "
-        "plans each station's travel from the last station's force, so a "
-        "run with too few steps per station swings about the target. Same "
-        "stop and scope as Maximum kinetic energy ratio.",
+        "dimensionless, 0 <= r <= 10; 0: not checked. The punch presses the "
+        "compact with the target as a load, so a run with too few steps per "
+        "station lags behind a changing target or rings about it. Same stop "
+        "and scope as Maximum kinetic energy ratio.",
         Patterns::Double(0., 10.));
     }
     prm.leave_subsection();

@@ -128,6 +128,9 @@ namespace densify
                    trial,
                    force_control_speed(scene.lower_table,
                                        prm.tools.lower_max_speed));
+    // the explicit method follows force windows dynamically
+    punch_control.set_dynamic(effects.method == Method::explicit_dynamics);
+    lower_control.set_dynamic(effects.method == Method::explicit_dynamics);
     lateral_table    = std::move(scene.lateral_table);
     die_top          = scene.die_top;
     die_table        = std::move(scene.die_table);

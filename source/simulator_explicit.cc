@@ -65,6 +65,16 @@ namespace densify
         pcout << std::endl;
       }
     explicit_penalty = lumped_mass->contact_penalties(stiffness);
+    // a punch under force control is a rigid body whose mass keeps its
+    // contact springs within the stable step (PunchControl::drive())
+    double face = 0.;
+    for (const Particle &p : particles)
+      face += numbers::PI * std::pow(p.diameter / 2., 2);
+    if (effects.has_tool(ToolKind::die_wall))
+      face = numbers::PI * std::pow(prm.tools.die_diameter / 2., 2);
+    punch_stiffness =
+      *std::max_element(explicit_penalty.begin(), explicit_penalty.end()) *
+      face;
     std::vector<double> diameters;
     for (const Particle &p : particles)
       diameters.push_back(p.diameter);
@@ -175,6 +185,17 @@ namespace densify
                     TrilinosWrappers::MPI::Vector       &internal,
                     TrilinosWrappers::MPI::Vector       &external)
   {
+    // a punch under force control moves as a rigid body pressed by its
+    // target and its contact force of the last step, with a mass whose
+    // frequency on the stiffest contact springs over the whole bore, h
+    // sqrt(2 k / m), stays below the stable 2 (PunchControl::drive())
+    if (scene_increment > 0.)
+      for (PunchControl *control : {&punch_control, &lower_control})
+        control->drive(scene_time,
+                       scene_increment,
+                       dt,
+                       punch_stiffness * dt * dt,
+                       explicit_dynamics->damping_coefficient());
     apply_loads(scene_time, scene_increment);
     if (&u != &solution)
       solution = u;
@@ -248,6 +269,12 @@ namespace densify
       explicit_forces.finish(external);
     external.compress(VectorOperation::add);
     const ContactResults contact = contact_results();
+    punch_control.observe(
+      contact.tools
+        .normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
+    lower_control.observe(
+      contact.tools
+        .normal_force[static_cast<unsigned int>(ToolKind::lower_punch)]);
 
     // the account of the loads: work of the moving upper punch (its normal
     // force along its travel, its friction along its lateral motion)
@@ -443,11 +470,10 @@ namespace densify
                   "far, above Explicit/Maximum force control error = "
                << 100. * limit << " %";
           breach = text.str();
-          advice += ", or let the target start at the force the punch "
-                    "carries and change slowly (each station's travel is "
-                    "planned from the last one's force, and a punch turned "
-                    "back unloads elastically, much stiffer than it loaded), "
-                    "or use Solver/Method = implicit";
+          advice += ", or let the target change slowly (the punch presses "
+                    "the compact with the target as a load, and a compact "
+                    "that has too little time per station to follow it "
+                    "lags or rings), or use Solver/Method = implicit";
         }
     if (breach.empty())
       return;

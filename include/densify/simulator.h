@@ -556,7 +556,11 @@ namespace densify
     /// The power iteration's last vector, the start of the next one.
     TrilinosWrappers::MPI::Vector frequency_mode;
     /// The explicit run's contact penalty per particle (MPa/mm).
-    std::vector<double>               explicit_penalty;
+    std::vector<double> explicit_penalty;
+    /// An upper bound of the contact stiffness a punch meets (N/mm): the
+    /// stiffest particle's penalty over the die's bore, for the mass of a
+    /// punch under force control (PunchControl::drive()).
+    double                            punch_stiffness = 0.;
     std::unique_ptr<ExplicitDynamics> explicit_dynamics;
     /// Energy account of the explicit run kept by the system (mJ): work of
     /// the moving tools and of the body force, friction work, the contact

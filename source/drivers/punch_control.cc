@@ -35,6 +35,7 @@ namespace densify
     , max_speed(max_speed)
     , d0(interpolate(displacement, 0.))
     , d1(d0)
+    , body_travel(d0)
   {}
 
 
@@ -83,10 +84,14 @@ namespace densify
   double
   PunchControl::travel(const double t) const
   {
-    // a force-controlled move is linear in time from the accepted state;
+    // the rigid body in a force window (the explicit method); a planned
+    // force-controlled move is linear in time from the accepted state;
     // elsewhere the (shifted) displacement history
+    if (body_moving)
+      return body_travel;
     const double eps = time_epsilon * std::max(1., std::abs(t1));
-    if (t1 > t0 && force_controlled(t1) && t >= t0 - eps && t <= t1 + eps)
+    if (!dynamic_windows && t1 > t0 && force_controlled(t1) && t >= t0 - eps &&
+        t <= t1 + eps)
       return d0 + (d1 - d0) * (t - t0) / (t1 - t0);
     if (std::abs(t - t0) <= eps)
       return d0;
@@ -107,6 +112,12 @@ namespace densify
     if (!force_controlled(t1))
       {
         d1 = displacement_travel(t1);
+        return;
+      }
+    // the rigid body moves itself (drive())
+    if (dynamic_windows)
+      {
+        d1 = d0;
         return;
       }
     // the accepted state is one end of the bracket when nothing else moves:
@@ -220,6 +231,44 @@ namespace densify
 
 
 
+  void
+  PunchControl::drive(const double t,
+                      const double t_increment,
+                      const double h,
+                      const double mass,
+                      const double damping)
+  {
+    if (!force_controlled(t))
+      {
+        // the history goes on from where the window left the punch
+        if (body_moving)
+          offset = body_travel - interpolate(displacement, t - t_increment);
+        body_moving       = false;
+        body_at_speed     = false;
+        const double next = travel(t);
+        body_speed        = h > 0. ? (next - body_travel) / h : 0.;
+        body_travel       = next;
+        return;
+      }
+    // the window's first step starts from the punch's travel and speed
+    body_moving = true;
+    // central differences with the particles' mass-proportional damping
+    const double acceleration = (target(t) - body_force) / mass;
+    body_speed = ((1. - damping * h / 2.) * body_speed + h * acceleration) /
+                 (1. + damping * h / 2.);
+    const double limit = max_speed * t_increment;
+    double       move  = h * body_speed;
+    body_at_speed      = std::abs(move) > limit;
+    if (body_at_speed)
+      {
+        move       = std::copysign(limit, move);
+        body_speed = move / h;
+      }
+    body_travel += move;
+  }
+
+
+
   double
   PunchControl::max_move() const
   {
@@ -231,6 +280,8 @@ namespace densify
   void
   PunchControl::accept(const double f)
   {
+    if (body_moving)
+      d1 = body_travel;
     // the compact's compression over the move: both punches' travels
     const double compression = d1 - d0 + other;
     if (std::abs(compression) > 1e-12 * std::max(1., std::abs(d0)) &&
@@ -253,7 +304,8 @@ namespace densify
   double
   PunchControl::miss() const
   {
-    if (window_moves < 2)
+    // a punch at its largest speed approaches its target at it, by intent
+    if (window_moves < 2 || body_at_speed)
       return 0.;
     const double target_force = target(t0);
     const double scale        = std::max(std::abs(target_force), force_scale);

@@ -148,6 +148,13 @@ namespace densify
       damping = c;
     }
 
+    /// The mass-proportional damping coefficient (1/s).
+    double
+    damping_coefficient() const
+    {
+      return damping;
+    }
+
     /**
      * Integrate from the current state to scene time @p scene_time, updating
      * @p u. Renews the mass (and the step) at the start of the interval.

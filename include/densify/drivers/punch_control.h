@@ -4,6 +4,7 @@
 
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
+#include <boost/serialization/version.hpp>
 
 #include <utility>
 #include <vector>
@@ -24,8 +25,13 @@ namespace densify
    * punch's travel over the move;
    * the implicit method then corrects the travel by a bracketing secant
    * (regula falsi) until the punch carries the target within the tolerance
-   * (correct()), the explicit method accepts the station as it came and
-   * corrects the next one. During a move the travel is linear in time.
+   * (correct()). During a move the travel is linear in time.
+   *
+   * The explicit method (set_dynamic()) instead follows a force window with
+   * the punch as a rigid body driven by the target less the force it
+   * carries, integrated with the particles' central differences step by
+   * step (drive()): its mass is far below the compact's, so it presses the
+   * compact with the target as a load, at most at the largest speed.
    */
   class PunchControl
   {
@@ -95,6 +101,41 @@ namespace densify
     void
     accept(const double force);
 
+    /**
+     * Follow force windows as a rigid body (the explicit method) rather than
+     * by planned moves (the implicit method).
+     */
+    void
+    set_dynamic(const bool dynamic)
+    {
+      dynamic_windows = dynamic;
+    }
+
+    /**
+     * The explicit method's step to the scene time @p t, reached over the
+     * scene-time increment @p t_increment and the physical step @p h (s),
+     * from the force of the last observe(). Within a force window the punch
+     * of mass @p mass (t) under the mass-proportional damping @p damping
+     * (1/s) is accelerated by the target less that force,
+     * its move per step at most the largest speed times @p t_increment;
+     * outside it, it follows the displacement history, which goes on from
+     * where the window left the punch.
+     */
+    void
+    drive(const double t,
+          const double t_increment,
+          const double h,
+          const double mass,
+          const double damping);
+
+    /// The force (N) the punch carries after an explicit step, for the next
+    /// drive().
+    void
+    observe(const double force)
+    {
+      body_force = force;
+    }
+
     /// The force the punch carries at the accepted state (N).
     double
     accepted_force() const
@@ -104,18 +145,21 @@ namespace densify
 
     /// The accepted force's miss of its target, as a fraction of the larger
     /// of the target and the largest force so far; 0 after a
-    /// displacement-controlled move or the first move of a force window
-    /// (which starts from the state before the window).
+    /// displacement-controlled move, the first move of a force window
+    /// (which starts from the state before the window) and a rigid body
+    /// (drive()) at its largest speed, which approaches the target at it.
     double
     miss() const;
 
-    /// The checkpoint's state.
+    /// The checkpoint's state (version 0 lacks the rigid body's).
     template <class Archive>
     void
-    serialize(Archive &archive, const unsigned int)
+    serialize(Archive &archive, const unsigned int version)
     {
       archive &t0 &d0 &f0 &d_prev &has_prev &stiffness &offset &force_scale &t1
         &d1 &window_moves;
+      if (version >= 1)
+        archive &body_travel &body_speed &body_force &body_moving;
     }
 
   private:
@@ -158,6 +202,15 @@ namespace densify
     /// this punch that carries the accepted force is d0 - other.
     double other = 0.;
 
+    /// Whether force windows are followed by the rigid body (drive()).
+    bool dynamic_windows = false;
+    /// The rigid body's travel (mm), speed (mm/s of physical time) and
+    /// force (N) after the last step, and whether it is in a force window.
+    double body_travel = 0., body_speed = 0., body_force = 0.;
+    bool   body_moving = false;
+    /// Whether the rigid body's last step was held to the largest speed.
+    bool body_at_speed = false;
+
     /// The tries of the current move: the largest travel that carried less
     /// than the target, the smallest that carried more, and the side the
     /// last try fell on (regula falsi with the Illinois halving).
@@ -166,3 +219,5 @@ namespace densify
     int    last_side = 0;
   };
 } // namespace densify
+
+BOOST_CLASS_VERSION(densify::PunchControl, 1)
