@@ -8,14 +8,21 @@
 // area fraction (statistics.csv) is the Hertz circle's pi a^2 on both
 // spheres within 15 % at those steps: a facet counts whole once a point of
 // it carries a pressure, and the circle's radius (a = 0.10-0.12 mm) spans
-// three of the 0.04 mm elements (measured -8.0 % and -7.1 %).
+// three of the 0.04 mm elements (measured -8.0 % and -5.3 %).
 //
 // The poles are refined to 0.04 mm (prm/hertz.prm: 0.03 mm). At the first
 // step, delta/R = 0.0128, the contact radius (0.11 mm) spans fewer than
-// three such elements and the force is 4.2 % below Hertz: that step is a
+// three such elements and the force is 4.4 % below Hertz: that step is a
 // preload here, printed but not held to 3 %; on the 0.03 mm mesh it is
 // within 2.6 % (benchmarks/particle_hertz.sh, 3 minutes;
 // doc/verification.md).
+//
+// Contact/Gap tolerance = 3e-5 mm (prm/hertz.prm: 1e-5) is 0.25 % of each
+// contact's approach delta/4 at the last step; the forces move by 0.02 %
+// against 1e-5 (-0.16 % at the unchecked preload), and the augmentations
+// per step fall from 6-10 to 1-3 (the run from 114 s to 76 s, side by side
+// on a loaded machine): `build/densify prm/hertz.prm` with this test's
+// options and `--set "Contact/Gap tolerance=..."`.
 //
 // Contact/Hold poles on axis = true keeps the frictionless column from
 // buckling sideways and holds the spin about the axis, which frictionless
@@ -50,7 +57,8 @@ main(int argc, char **argv)
                        "Tools/Upper punch/Displacement history=0:0, 1:0.048",
                        "Mesh/Refined element size=0.04",
                        "Solver/Linear solver=direct",
-                       "Contact/Hold poles on axis=true"});
+                       "Contact/Hold poles on axis=true",
+                       "Contact/Gap tolerance=3e-5"});
   Simulator simulator(parameters, MPI_COMM_WORLD, false);
   simulator.run();
 
