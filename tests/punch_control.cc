@@ -18,7 +18,9 @@
 //    control, continues to the same travels to the last bit;
 // 5. a target far above what the punch reaches at its largest speed
 //    (0.05 mm/s): each step moves it by that speed times the step, and
-//    miss() is 0 (a servo press approaches at its speed, by intent).
+//    miss() is 0 (a servo press approaches at its speed, by intent);
+// 6. a window that ends within a station: the station's end travel is the
+//    history's, shifted where the window left the punch.
 #include <densify/drivers/punch_control.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -170,6 +172,32 @@ main()
             << std::setprecision(2) << slow_node.force
             << " N against 1000 N; miss " << slow.miss() << std::endl;
   ok = ok && worst < 1e-15 && slow.miss() == 0.;
+
+  // 6. a window that ends within a station: the station's end travel is
+  // the history's, shifted where the window left the punch
+  PunchControl short_window(
+    {{0., 0.}, {2., 2.}}, {{{0.5, 100.}, {0.55, 100.}}}, 1e-3, 0.01, 5.);
+  short_window.set_dynamic(true);
+  Node short_node;
+  run(short_window, short_node, 1, 6, false, ok);
+  const double end_travel = short_window.travel(0.6);
+  double       left       = 0.;
+  {
+    // the travel where the window ended, from the same run again
+    PunchControl again(
+      {{0., 0.}, {2., 2.}}, {{{0.5, 100.}, {0.55, 100.}}}, 1e-3, 0.01, 5.);
+    again.set_dynamic(true);
+    Node again_node;
+    run(again, again_node, 1, 5, false, ok);
+    again.plan(0.6);
+    for (unsigned int n = 1; n <= 50; ++n)
+      step(again, again_node, 0.5 + n * h);
+    left = again.travel(0.55);
+  }
+  std::cout << std::setprecision(6) << "a window ending within a station: "
+            << "left at " << left << " mm, the station's end " << end_travel
+            << " mm (the history's 0.05 mm on)" << std::endl;
+  ok = ok && std::abs(end_travel - (left + 0.05)) < 1e-12;
 
   std::cout << (ok ? "punch_control: passed" : "punch_control: FAILED")
             << std::endl;

@@ -280,8 +280,12 @@ namespace densify
   void
   PunchControl::accept(const double f)
   {
+    // the rigid body's end; after a window that ended within the move, the
+    // history shifted where the window left the punch (drive())
     if (body_moving)
       d1 = body_travel;
+    else if (dynamic_windows && !force_controlled(t1))
+      d1 = displacement_travel(t1);
     // the compact's compression over the move: both punches' travels
     const double compression = d1 - d0 + other;
     if (std::abs(compression) > 1e-12 * std::max(1., std::abs(d0)) &&
