@@ -18,6 +18,26 @@
 
 namespace densify
 {
+  namespace
+  {
+    /// The area a punch presses (mm^2): the die's bore, or without a die
+    /// the particles' cross-sections.
+    double
+    pressed_area(const std::vector<Particle> &particles,
+                 const bool                   die,
+                 const double                 die_diameter)
+    {
+      if (die)
+        return numbers::PI * std::pow(die_diameter / 2., 2);
+      double area = 0.;
+      for (const Particle &p : particles)
+        area += numbers::PI * std::pow(p.diameter / 2., 2);
+      return area;
+    }
+  } // namespace
+
+
+
   std::vector<double>
   Simulator::setup_explicit(const double tangential_ratio)
   {
@@ -67,14 +87,11 @@ namespace densify
     explicit_penalty = lumped_mass->contact_penalties(stiffness);
     // a punch under force control is a rigid body whose mass keeps its
     // contact springs within the stable step (PunchControl::drive())
-    double face = 0.;
-    for (const Particle &p : particles)
-      face += numbers::PI * std::pow(p.diameter / 2., 2);
-    if (effects.has_tool(ToolKind::die_wall))
-      face = numbers::PI * std::pow(prm.tools.die_diameter / 2., 2);
     punch_stiffness =
       *std::max_element(explicit_penalty.begin(), explicit_penalty.end()) *
-      face;
+      pressed_area(particles,
+                   effects.has_tool(ToolKind::die_wall),
+                   prm.tools.die_diameter);
     std::vector<double> diameters;
     for (const Particle &p : particles)
       diameters.push_back(p.diameter);
@@ -432,18 +449,15 @@ namespace densify
     // below it a loose bed rearranges, and mass scaling makes that inertial
     // (the inertial number grows as the square root of the scaled density
     // over the pressure)
-    double stress = std::numeric_limits<double>::infinity(), area = 0.;
-    for (unsigned int p = 0; p < particles.size(); ++p)
-      {
-        const Material &material = *particle_material[p];
-        stress                   = std::min({stress,
-                                             material.initial_yield_stress(),
-                                             1e-3 * material.youngs_modulus()});
-        area += numbers::PI * std::pow(particles[p].diameter / 2., 2);
-      }
-    if (effects.has_tool(ToolKind::die_wall))
-      area = numbers::PI * std::pow(prm.tools.die_diameter / 2., 2);
-    limits.load_floor = 0.1 * stress * area;
+    double stress = std::numeric_limits<double>::infinity();
+    for (const auto &material : particle_material)
+      stress = std::min({stress,
+                         material->initial_yield_stress(),
+                         1e-3 * material->youngs_modulus()});
+    limits.load_floor = 0.1 * stress *
+                        pressed_area(particles,
+                                     effects.has_tool(ToolKind::die_wall),
+                                     prm.tools.die_diameter);
     return limits;
   }
 
