@@ -86,10 +86,15 @@ namespace densify
   void
   Simulator::begin_solve()
   {
-    // each Newton solve starts from the closest master facets; within it a
-    // slave point keeps its facet while it stays near (hysteresis)
+    // each Newton solve starts from the closest master facets, assigned
+    // before its first assembly; within it a slave point keeps its facet
+    // while it stays near (hysteresis)
     if (particle_contact)
-      particle_contact->reset_projections();
+      {
+        update_ghosts();
+        particle_contact->reset_projections();
+        particle_contact->update_projections(*mapping, solution_ghosted);
+      }
   }
 
 

@@ -277,6 +277,11 @@ namespace densify
     begin_solve() override;
     unsigned int
     after_update() override;
+    bool
+    start_dependent() const override
+    {
+      return particle_contact != nullptr;
+    }
     std::string
     iteration_details() override;
     double

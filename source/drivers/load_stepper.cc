@@ -64,19 +64,36 @@ namespace densify
     double violation = 0.;
     for (unsigned int solve = 0;; ++solve)
       {
-        for (unsigned int aug = 0;; ++aug)
+        // Newton solves with augmentations until the violation is below the
+        // tolerance; then, where a converged state depends on the solve's
+        // start (master facets kept within a solve, so the state balances
+        // the kept facets), solves from a fresh start until one takes no
+        // iteration: the increment ends in equilibrium with the closest
+        // facets, as the next increment's first solve will see it
+        bool         check = false;
+        unsigned int aug = 0, n_checks = 0;
+        for (bool first = true;; first = false)
           {
             // predictor margin: constraints within this increment's travel
             const auto [n_newton, n_linear] = newton.solve(
-              problem, step, aug == 0 ? travel : 0., pseudo_transient);
+              problem, step, first ? travel : 0., pseudo_transient, check);
             counts.newton_iterations += n_newton;
             counts.linear_iterations += n_linear;
             violation = problem.evaluate_constraints();
-            if (violation <= control.gap_tolerance ||
-                aug == control.max_augmentations)
+            if (violation > control.gap_tolerance &&
+                aug < control.max_augmentations)
+              {
+                problem.update_multipliers();
+                ++aug;
+                ++counts.augmentations;
+                check = false;
+                continue;
+              }
+            if (!problem.start_dependent() || n_newton == 0 ||
+                n_checks == control.max_consistency_solves)
               break;
-            problem.update_multipliers();
-            ++counts.augmentations;
+            ++n_checks;
+            check = true;
           }
         double scale = 1.;
         if (problem.loads_reached(scale))

@@ -21,7 +21,8 @@ namespace densify
   NewtonSolver::solve(NonlinearProblem  &problem,
                       const unsigned int step,
                       const double       margin,
-                      const bool         pseudo_transient)
+                      const bool         pseudo_transient,
+                      const bool         check_first)
   {
     TrilinosWrappers::MPI::Vector &solution = problem.solution_vector();
     TrilinosWrappers::MPI::Vector &residual = problem.residual_vector();
@@ -31,9 +32,9 @@ namespace densify
     unsigned int linear_iterations = 0;
     problem.begin_solve();
     NonlinearProblem::Evaluation current =
-      problem.assemble(true, margin, false);
+      problem.assemble(!check_first, margin, check_first);
     if (problem.after_update() > 0)
-      current = problem.assemble(true, margin, false);
+      current = problem.assemble(!check_first, margin, check_first);
     double line_search_step = 1.;
     // the first trial of a line search is assembled with the tangent, which
     // serves the next Newton iteration if the trial is kept; it is wasted if
@@ -73,6 +74,8 @@ namespace densify
           return {it, linear_iterations};
         if (it == max_iterations)
           break;
+        if (it == 0 && check_first)
+          current = problem.assemble(true, margin, false);
         if (control.adaptive_linear_tolerance && it > 0)
           {
             const double ratio = current.residual_norm / history[it - 1];

@@ -69,6 +69,18 @@ namespace densify
     virtual void
     update_multipliers() = 0;
 
+    /**
+     * True if a converged Newton solve depends on the state it started from
+     * beyond the solution (e.g. contact points that keep their master facets
+     * within a solve): then the stepper accepts an increment only once a
+     * solve from a fresh start takes no iteration.
+     */
+    virtual bool
+    start_dependent() const
+    {
+      return false;
+    }
+
     /// Keep the committed state for a roll-back.
     virtual void
     save_state() = 0;
@@ -96,6 +108,9 @@ namespace densify
     unsigned int max_augmentations = 20;
     /// Most solves of one increment for a load control (loads_reached()).
     unsigned int max_control_solves = 20;
+    /// Most solves from a fresh start after the augmentations of one
+    /// increment (IncrementalProblem::start_dependent()).
+    unsigned int max_consistency_solves = 4;
     /// Newton iterations up to which an increment counts as easy (the next
     /// one may be twice as long, up to a step).
     unsigned int easy_newton_iterations = 10;
@@ -114,7 +129,10 @@ namespace densify
    * Advances an IncrementalProblem from load step to load step. Each
    * increment starts from a predictor (the last increment extrapolated in
    * proportion to the load's travel), then solves by Newton and updates the
-   * multipliers until the constraint violation is below the tolerance. A
+   * multipliers until the constraint violation is below the tolerance; a
+   * problem whose solves depend on their start is solved again from a fresh
+   * start until such a solve takes no iteration (at most
+   * max_consistency_solves times). A
    * failed increment is rolled back and retried with half the size (at most
    * max_cutbacks times in a row); increments grow again after easy ones.
    * With Continuation::fallback a failed increment is first retried at the

@@ -182,12 +182,17 @@ namespace densify
      * reference force, so it vanishes as R does. The residual is never
      * changed, so the converged state solves R(u) = 0 as without the
      * continuation. It gets four times the iterations.
+     *
+     * With @p check_first, the first residual is assembled without the
+     * tangent, which is assembled only if that residual is not converged: a
+     * solve expected to take no iteration (a check) costs one residual.
      */
     std::pair<unsigned int, unsigned int>
     solve(NonlinearProblem  &problem,
           const unsigned int step,
           const double       margin,
-          const bool         pseudo_transient = false);
+          const bool         pseudo_transient = false,
+          const bool         check_first      = false);
 
     /// When the pseudo-transient continuation is used.
     Continuation
