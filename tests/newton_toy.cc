@@ -13,7 +13,12 @@
 //   moved (a relaxation), the next step's predictor does not extrapolate
 //   that move by the ratio of the travels (about 1e14): the step starts
 //   from a residual below twice its load change (the exit code) and ends at
-//   the exact chain.
+//   the exact chain;
+// - a stop with two facets whose facet each Newton solve keeps from its
+//   start (as contact points keep their master facets): the step that
+//   carries the last node across the facets' edge ends in equilibrium with
+//   the facet it ends on (the stepper's consistency solves), so a hold at
+//   the same load takes no Newton iteration and stays there.
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -72,6 +77,31 @@ namespace
     /// set_loads() reports for an increment (default F dt / k).
     std::function<double(double)>         load;
     std::function<double(double, double)> travel;
+    /// A faceted stop: beyond x = facet_edge its surface recedes as
+    /// gap + facet_slope (x - facet_edge) (continuous at the edge); each
+    /// solve keeps the facet of the last node's place at its start, the
+    /// first one extended beyond the edge. Off while facet_slope = 0.
+    double       facet_slope = 0., facet_edge = 0.;
+    unsigned int kept_facet = 0;
+
+    /// The stop's surface by the kept facet at the last node's place.
+    double
+    stop_position(const double x) const
+    {
+      return gap + (kept_facet == 1 ? facet_slope * (x - facet_edge) : 0.);
+    }
+
+    void
+    begin_solve() override
+    {
+      kept_facet = (facet_slope != 0. && u[n - 1] > facet_edge) ? 1 : 0;
+    }
+
+    bool
+    start_dependent() const override
+    {
+      return facet_slope != 0.;
+    }
 
     Evaluation
     assemble(const bool with_tangent,
@@ -109,10 +139,11 @@ namespace
         }
       // the pulling force and the stop: p = max(0, lambda + eps (u - gap))
       r[n - 1] -= load ? load(time) : F_max * time;
-      const double p = std::max(0., lambda + eps * (u[n - 1] - gap));
+      const double x = u[n - 1];
+      const double p = std::max(0., lambda + eps * (x - stop_position(x)));
       r[n - 1] += p;
       if (with_tangent && p > 0)
-        K.add(n - 1, n - 1, eps);
+        K.add(n - 1, n - 1, eps * (1. - (kept_facet == 1 ? facet_slope : 0.)));
       r.compress(VectorOperation::insert);
       if (with_tangent)
         K.compress(VectorOperation::add);
@@ -157,13 +188,14 @@ namespace
     double
     evaluate_constraints() override
     {
-      return std::max(0., u[n - 1] - gap);
+      return std::max(0., u[n - 1] - stop_position(u[n - 1]));
     }
 
     void
     update_multipliers() override
     {
-      lambda = std::max(0., lambda + eps * (u[n - 1] - gap));
+      lambda =
+        std::max(0., lambda + eps * (u[n - 1] - stop_position(u[n - 1])));
     }
 
     void
@@ -355,6 +387,63 @@ main(int argc, char **argv)
     std::cout << "after a hold: the next step ends at the exact chain "
                  "(error < 1e-10 mm): "
               << (std::abs(chain.u[chain.n - 1] - chain.n * s) < 1e-10)
+              << std::endl;
+  }
+
+  // the faceted stop at 1 mm whose second facet starts at 0.99 mm and
+  // recedes with slope 1/2, loaded to F_max / 2 in the first step (the free
+  // chain's end would reach beyond 2 mm) and held in the second; the gap
+  // tolerance (0.01 mm) takes the penalty's penetration (about 2e-3 mm)
+  // without augmentation. The first facet, extended, holds the node at
+  // 1.0015 mm, past the edge; the consistent equilibrium is on the second
+  // facet: F = spring(x / n) + eps (x - 1 - (x - 0.99) / 2), x = 1.013 mm.
+  {
+    const double gap = 1.;
+    SpringChain  chain(8, gap);
+    chain.facet_slope = 0.5;
+    chain.facet_edge  = 0.99;
+    chain.load        = [&chain](const double t) {
+      return chain.F_max * std::min(t, 0.5);
+    };
+    chain.travel = [&chain](const double t, const double dt) {
+      return t > 0.5 ? 1e-16 : chain.F_max * dt / chain.k;
+    };
+    // the consistent equilibrium by bisection
+    double lo = chain.facet_edge, hi = 1.1;
+    for (unsigned int i = 0; i < 200; ++i)
+      {
+        const double x = 0.5 * (lo + hi);
+        const double excess =
+          spring(x / chain.n, chain.k, chain.c) +
+          chain.eps * (x - gap - chain.facet_slope * (x - chain.facet_edge)) -
+          chain.F_max * 0.5;
+        (excess > 0 ? hi : lo) = x;
+      }
+    const double  consistent = 0.5 * (lo + hi);
+    NewtonControl control;
+    control.tolerance = 1e-12;
+    NewtonSolver       newton(control, silent);
+    LoadStepperControl steps;
+    steps.step_length   = 0.5;
+    steps.gap_tolerance = 1e-2;
+    LoadStepper stepper(steps, newton, silent);
+    stepper.setup(chain.u);
+    double     t = 0.;
+    StepCounts loading, hold;
+    stepper.advance_to(chain, t, 0.5, 1, loading);
+    const double loaded = chain.u[chain.n - 1];
+    stepper.advance_to(chain, t, 1., 2, hold);
+    const double held = chain.u[chain.n - 1];
+    std::cerr << "faceted stop: the node at " << std::setprecision(12) << loaded
+              << " mm after the loading (" << loading.newton_iterations
+              << " Newton iterations), " << held << " mm after the hold ("
+              << hold.newton_iterations << ")" << std::endl;
+    std::cout << "faceted stop: the loading ends in equilibrium with the "
+                 "second facet (within 1e-9 mm): "
+              << (std::abs(loaded - consistent) < 1e-9)
+              << ", the hold takes no Newton iteration and stays there: "
+              << (hold.newton_iterations == 0 &&
+                  std::abs(held - loaded) < 1e-12)
               << std::endl;
   }
   return ok ? 0 : 1;
