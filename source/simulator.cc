@@ -651,6 +651,7 @@ namespace densify
                 s.augmentations     = counts.augmentations;
                 s.cutbacks          = counts.cutbacks;
                 s.continuations     = counts.continuations;
+                s.failed_checks     = counts.failed_checks;
                 s.increments        = counts.increments;
                 results             = last_contact;
               }

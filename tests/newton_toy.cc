@@ -17,7 +17,8 @@
 // - a stop with two facets whose facet each Newton solve keeps from its
 //   start (as contact points keep their master facets): the step that
 //   carries the last node across the facets' edge ends in equilibrium with
-//   the facet it ends on (the stepper's consistency solves), so a hold at
+//   the facet it ends on (the stepper's consistency solves, asked for by
+//   LoadStepperControl::max_consistency_solves), so a hold at
 //   the same load takes no Newton iteration and stays there.
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/index_set.h>
@@ -424,8 +425,9 @@ main(int argc, char **argv)
     control.tolerance = 1e-12;
     NewtonSolver       newton(control, silent);
     LoadStepperControl steps;
-    steps.step_length   = 0.5;
-    steps.gap_tolerance = 1e-2;
+    steps.step_length            = 0.5;
+    steps.gap_tolerance          = 1e-2;
+    steps.max_consistency_solves = 4;
     LoadStepper stepper(steps, newton, silent);
     stepper.setup(chain.u);
     double     t = 0.;

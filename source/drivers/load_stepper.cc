@@ -67,16 +67,45 @@ namespace densify
         // Newton solves with augmentations until the violation is below the
         // tolerance; then, where a converged state depends on the solve's
         // start (master facets kept within a solve, so the state balances
-        // the kept facets), solves from a fresh start until one takes no
-        // iteration: the increment ends in equilibrium with the closest
-        // facets, as the next increment's first solve will see it
-        bool         check = false;
-        unsigned int aug = 0, n_checks = 0;
+        // the kept facets), up to max_consistency_solves solves from a fresh
+        // start until one takes no iteration: the increment ends in
+        // equilibrium with the closest facets, as the next increment's first
+        // solve will see it
+        bool                          check = false;
+        unsigned int                  aug = 0, n_checks = 0;
+        TrilinosWrappers::MPI::Vector converged;
         for (bool first = true;; first = false)
           {
-            // predictor margin: constraints within this increment's travel
-            const auto [n_newton, n_linear] = newton.solve(
-              problem, step, first ? travel : 0., pseudo_transient, check);
+            std::pair<unsigned int, unsigned int> result;
+            try
+              {
+                // predictor margin: constraints within this increment's
+                // travel; the continuation is for the solves that must
+                // converge, not for the checks
+                result = newton.solve(problem,
+                                      step,
+                                      first ? travel : 0.,
+                                      pseudo_transient && !check,
+                                      check);
+              }
+            catch (const std::runtime_error &)
+              {
+                if (!check)
+                  throw;
+                // a check that does not converge within its iterations
+                // (points that switch facets back and forth in a dense
+                // packing): the increment keeps the state converged with
+                // the kept facets; its material and contact states are
+                // evaluated again, from the closest facets
+                counts.newton_iterations += newton.residuals().size() - 1;
+                solution = converged;
+                problem.begin_solve();
+                problem.assemble(false, 0., false);
+                violation = problem.evaluate_constraints();
+                ++counts.failed_checks;
+                break;
+              }
+            const auto [n_newton, n_linear] = result;
             counts.newton_iterations += n_newton;
             counts.linear_iterations += n_linear;
             violation = problem.evaluate_constraints();
@@ -93,7 +122,8 @@ namespace densify
                 n_checks == control.max_consistency_solves)
               break;
             ++n_checks;
-            check = true;
+            check     = true;
+            converged = solution;
           }
         double scale = 1.;
         if (problem.loads_reached(scale))

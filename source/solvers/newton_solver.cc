@@ -53,7 +53,8 @@ namespace densify
     const double       beta_start = control.continuation_start;
     double             beta       = pseudo_transient ? beta_start : 0.;
     const unsigned int max_iterations =
-      (pseudo_transient ? 4 : 1) * control.max_iterations;
+      check_first ? std::max(5u, control.max_iterations / 4) :
+                    (pseudo_transient ? 4 : 1) * control.max_iterations;
     history.clear();
     for (unsigned int it = 0; it <= max_iterations; ++it)
       {

@@ -72,8 +72,8 @@ namespace densify
     /**
      * True if a converged Newton solve depends on the state it started from
      * beyond the solution (e.g. contact points that keep their master facets
-     * within a solve): then the stepper accepts an increment only once a
-     * solve from a fresh start takes no iteration.
+     * within a solve): then the stepper may solve an increment again from
+     * a fresh start (LoadStepperControl::max_consistency_solves).
      */
     virtual bool
     start_dependent() const
@@ -109,8 +109,9 @@ namespace densify
     /// Most solves of one increment for a load control (loads_reached()).
     unsigned int max_control_solves = 20;
     /// Most solves from a fresh start after the augmentations of one
-    /// increment (IncrementalProblem::start_dependent()).
-    unsigned int max_consistency_solves = 4;
+    /// increment (IncrementalProblem::start_dependent()); 0: none, the
+    /// default of the scenes (doc/roadmap.md, "A displacement hold").
+    unsigned int max_consistency_solves = 0;
     /// Newton iterations up to which an increment counts as easy (the next
     /// one may be twice as long, up to a step).
     unsigned int easy_newton_iterations = 10;
@@ -123,6 +124,9 @@ namespace densify
                  augmentations = 0, cutbacks = 0, increments = 0;
     /// Increments retried with the pseudo-transient continuation.
     unsigned int continuations = 0;
+    /// Consistency solves (IncrementalProblem::start_dependent()) that did
+    /// not converge: their increments kept the state converged before.
+    unsigned int failed_checks = 0;
   };
 
   /**
@@ -130,9 +134,10 @@ namespace densify
    * increment starts from a predictor (the last increment extrapolated in
    * proportion to the load's travel), then solves by Newton and updates the
    * multipliers until the constraint violation is below the tolerance; a
-   * problem whose solves depend on their start is solved again from a fresh
-   * start until such a solve takes no iteration (at most
-   * max_consistency_solves times). A
+   * problem whose solves depend on their start may be solved again from a
+   * fresh start until such a solve takes no iteration (at most
+   * max_consistency_solves times; a check that does not converge leaves the
+   * state converged before it). A
    * failed increment is rolled back and retried with half the size (at most
    * max_cutbacks times in a row); increments grow again after easy ones.
    * With Continuation::fallback a failed increment is first retried at the

@@ -78,6 +78,8 @@ namespace densify
     /// Increments retried with the pseudo-transient continuation
     /// (Solver/Pseudo-transient continuation = fallback).
     unsigned int continuations = 0;
+    /// Consistency solves that did not converge (the progress line only).
+    unsigned int failed_checks = 0;
     /// The smallest own volume ratio V/V0 of any cell at the end of the
     /// step (smallest_cell_volume()).
     double min_cell_volume_ratio = 1.;

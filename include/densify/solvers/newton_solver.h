@@ -185,7 +185,8 @@ namespace densify
      *
      * With @p check_first, the first residual is assembled without the
      * tangent, which is assembled only if that residual is not converged: a
-     * solve expected to take no iteration (a check) costs one residual.
+     * solve expected to take no iteration (a check) costs one residual. Such
+     * a check gets a quarter of the iterations (at least 5).
      */
     std::pair<unsigned int, unsigned int>
     solve(NonlinearProblem  &problem,
