@@ -1,6 +1,8 @@
 # An empty parameter file, one of blanks only, or a directory given as the
 # parameter file is refused (exit code 2, one line), and nothing is written:
-# not the built-in default scene into ./output.
+# not the built-in default scene into ./output. The 2-rank run stops at the
+# input check, so the test holds one processor.
+# ctest processors: 1
 set -u
 cd "$WORK_DIR"
 rm -rf output

@@ -10,22 +10,31 @@
 #   the slowing-down map gives them (the last station about 1.7 times the
 #   second) and the punch force stays within 2 % of the implicit one;
 # - 2 MPI ranks give the same statistics as 1 (to 1e-6) on the first steps.
+# Each run is a part of its own (tests/cli/lib/parts.bash).
+# ctest parts: explicit_8000 implicit explicit_4000 slowing ranks_1 ranks_2:2
 set -eu
 cd "$WORK_DIR"
+source "$SOURCE_DIR/tests/cli/lib/parts.bash"
 source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
-# the four 1-rank runs on two processors (the test holds two for its 2-rank
-# part): the longest beside the three others
 explicit_run() {
   "$DENSIFY" "$scene" "${common[@]}" --set "Output/Directory=$1" \
     --set "Solver/Method=explicit" --set "Explicit/Number of steps=$2" \
-    "${@:3}" > "$1.log" 2>&1
+    "${@:3}" > "$1.log" 2>&1 || { tail -n 3 "$1.log"; exit 1; }
 }
-explicit_run explicit_8000 8000 &
-first=$!
-"$DENSIFY" "$scene" "${common[@]}" --set "Output/Directory=implicit" > implicit.log
-explicit_run explicit_4000 4000
-explicit_run slowing 2000 --set "Explicit/End speed fraction=0.5"
-wait $first
+part explicit_8000 && explicit_run explicit_8000 8000
+part implicit &&
+  { "$DENSIFY" "$scene" "${common[@]}" --set "Output/Directory=implicit" > implicit.log ||
+    { tail -n 3 implicit.log; exit 1; }; }
+part explicit_4000 && explicit_run explicit_4000 4000
+part slowing && explicit_run slowing 2000 --set "Explicit/End speed fraction=0.5"
+# 1 and 2 ranks on the first two steps
+for np in 1 2; do
+  part ranks_$np || continue
+  "$MPIEXEC" --oversubscribe -np $np "$DENSIFY" "$scene" "${common[@]}" \
+    --set "Output/Directory=ranks_$np" --set "Solver/Method=explicit" \
+    --set "Explicit/Number of steps=4000" --stop-after 2 > "ranks_$np.log" 2>&1 || [ $? -eq 3 ]
+done
+part check || exit 0
 /usr/bin/python3 - <<'PY'
 import csv
 def last(d):
@@ -64,12 +73,6 @@ print("End speed fraction 0.5: F_upper %.2f N (%+.2f %%), KE/IE %.2g %%"
          100 * float(r["kinetic_energy"]) / float(r["internal_work"])))
 assert abs(F(r) / F(im) - 1) < 0.02, "punch force, slowing down"
 PY
-# 1 and 2 ranks on the first two steps
-for np in 1 2; do
-  "$MPIEXEC" --oversubscribe -np $np "$DENSIFY" "$scene" "${common[@]}" \
-    --set "Output/Directory=ranks_$np" --set "Solver/Method=explicit" \
-    --set "Explicit/Number of steps=4000" --stop-after 2 > "ranks_$np.log" 2>&1 || [ $? -eq 3 ]
-done
 cut -d, -f1-7,15,25-40 ranks_1/statistics.csv > a.csv
 cut -d, -f1-7,15,25-40 ranks_2/statistics.csv > b.csv
 "$NUMDIFF" -q -r 1e-6 -a 1e-10 -s ', \n' a.csv b.csv

@@ -5,32 +5,38 @@
 # measured in doc/performance.md, not asserted): the light
 # paper scene (seven J2 tin spheres with friction 0.2) shrunk to 0.24 mm of
 # stroke in 8 steps, where the particles press on the punches and the die
-# wall.
+# wall. Each run is a part of its own (tests/cli/lib/parts.bash).
+# ctest parts: direct reuse adaptive fronts_1 reuse2:2 fronts_2:2
 set -eu
 cd "$WORK_DIR"
+source "$SOURCE_DIR/tests/cli/lib/parts.bash"
 source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
 # (the scene itself asks for gmres-lu)
-# the 1-rank runs two at a time (the test holds two processors for its
-# 2-rank runs)
-"$DENSIFY" "$scene" --set "Output/Directory=direct" "${common[@]}" \
-  --set "Solver/Linear solver=direct" > direct.log &
-first=$!
-"$DENSIFY" "$scene" --set "Output/Directory=reuse" "${common[@]}" \
+part direct && "$DENSIFY" "$scene" --set "Output/Directory=direct" "${common[@]}" \
+  --set "Solver/Linear solver=direct" > direct.log
+part reuse && "$DENSIFY" "$scene" --set "Output/Directory=reuse" "${common[@]}" \
   --set "Solver/Linear solver=gmres-lu" > reuse.log
-wait $first
-grep -q "linear solver direct" direct.log
-"$DENSIFY" "$scene" --set "Output/Directory=adaptive" "${common[@]}" \
+part adaptive && "$DENSIFY" "$scene" --set "Output/Directory=adaptive" "${common[@]}" \
   --set "Solver/Linear solver=gmres-lu" \
-  --set "Solver/Adaptive linear tolerance=true" > adaptive.log &
-first=$!
-rc=0
-"$MPIEXEC" --oversubscribe -np 1 "$DENSIFY" "$scene" "${common[@]}" \
-  --set "Output/Directory=fronts1true" --set "Output/Verbose=true" \
-  --set "Solver/Reproducible=true" --stop-after 1 > "fronts1true.log" || rc=$?
-wait $first
-[ "$rc" -eq 3 ] # stopped by --stop-after
-"$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" "$scene" --set "Output/Directory=reuse2" \
+  --set "Solver/Adaptive linear tolerance=true" > adaptive.log
+part reuse2 && "$MPIEXEC" --oversubscribe -np 2 "$DENSIFY" "$scene" --set "Output/Directory=reuse2" \
   "${common[@]}" --set "Solver/Linear solver=gmres-lu" > reuse2.log
+# the first step of MUMPS's factorizations on 1 rank and both ways on 2
+# (checked below)
+fronts() { # ranks, Solver/Reproducible
+  local rc=0
+  "$MPIEXEC" --oversubscribe -np "$1" "$DENSIFY" "$scene" "${common[@]}" \
+    --set "Output/Directory=fronts$1$2" --set "Output/Verbose=true" \
+    --set "Solver/Reproducible=$2" --stop-after 1 > "fronts$1$2.log" || rc=$?
+  [ "$rc" -eq 3 ] # stopped by --stop-after
+}
+part fronts_1 && fronts 1 true
+if part fronts_2; then
+  fronts 2 true
+  fronts 2 false
+fi
+part check || exit 0
+grep -q "linear solver direct" direct.log
 grep -q "2 MPI rank" reuse2.log
 # the timing table: factorizations ("Solve: direct") and reusing solves
 factorizations=$(grep "Solve: direct" reuse.log | awk -F'|' '{print $3+0}')
@@ -58,13 +64,6 @@ tail -n 1 a.csv
 # 1 rank.
 for run in "1 true" "2 true" "2 false"; do
   set -- $run
-  if [ "$1" -eq 2 ]; then # (the 1-rank run ran beside the adaptive one)
-    rc=0
-    "$MPIEXEC" --oversubscribe -np "$1" "$DENSIFY" "$scene" "${common[@]}" \
-      --set "Output/Directory=fronts$1$2" --set "Output/Verbose=true" \
-      --set "Solver/Reproducible=$2" --stop-after 1 > "fronts$1$2.log" || rc=$?
-    [ "$rc" -eq 3 ] # stopped by --stop-after
-  fi
   read -r particles dofs < <(sed -n 's/^Densify: \([0-9]*\) particle(s), [0-9]* tetrahedra, \([0-9]*\) DoFs.*/\1 \2/p' "fronts$1$2.log")
   front=$(sed -n 's/.*largest front \([0-9]*\).*/\1/p' "fronts$1$2.log" | sort -n | tail -n 1)
   echo "$1 rank(s), Reproducible=$2: largest front $front, $((dofs / particles)) DoFs per particle"

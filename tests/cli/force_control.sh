@@ -32,35 +32,36 @@
 #      7-8 150 N within the tolerance; between and after the windows
 #      (steps 5-6, 9-10) the displacement history moves the punch by 0.002
 #      mm a step.
+# Each run is a part of its own (tests/cli/lib/parts.bash).
+# ctest parts: one slow lower_one windows two:2 lower_two:2
 set -u
 cd "$WORK_DIR"
+source "$SOURCE_DIR/tests/cli/lib/parts.bash"
 fails=0
 control=(--set "Output/Interval=0" --set "Time stepping/Number of steps=10"
   --set "Tools/Upper punch/Force history=0.4:100, 0.6:150, 0.8:150")
 fast=(--set "Tools/Upper punch/Maximum speed=1")
 scene="$SOURCE_DIR/prm/default.prm"
-# the 1-rank runs two at a time (the test holds two processors for its
-# 2-rank runs): the fast punch, the default speed (item 5), the lower punch
-# (item 6) and two force windows (item 8)
+# the runs: the fast punch on 1 and 2 ranks, the default speed (item 5),
+# the lower punch on 1 and 2 ranks (item 6) and two force windows (item 8)
 lower=(--set "Output/Interval=0" --set "Time stepping/Number of steps=10"
   --set "Tools/Upper punch/Displacement history=0:0"
   --set "Tools/Lower punch/Force history=0:0, 0.5:100, 1:100")
-"$DENSIFY" "$scene" "${control[@]}" "${fast[@]}" --set "Output/Directory=one" > one.log 2>&1 &
-first=$!
-"$DENSIFY" "$scene" "${control[@]}" --set "Output/Directory=slow" > slow.log 2>&1 ||
-  { echo "FAIL the default speed"; tail -n 5 slow.log; fails=$((fails + 1)); }
-wait $first || { echo "FAIL 1 rank"; tail -n 5 one.log; fails=$((fails + 1)); }
-"$DENSIFY" "$scene" "${lower[@]}" --set "Output/Directory=lower_one" > lower_one.log 2>&1 &
-first=$!
-"$DENSIFY" "$scene" --set "Output/Interval=0" --set "Time stepping/Number of steps=10" \
-  --set "Tools/Upper punch/Force history=0.2:100, 0.4:100; 0.6:150, 0.8:150" \
-  "${fast[@]}" --set "Output/Directory=windows" > windows.log 2>&1 ||
-  { echo "FAIL two windows"; tail -n 5 windows.log; fails=$((fails + 1)); }
-wait $first ||
-  { echo "FAIL the lower punch, 1 rank"; tail -n 5 lower_one.log; fails=$((fails + 1)); }
-"$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${control[@]}" "${fast[@]}" \
-  --set "Output/Directory=two" > two.log 2>&1 ||
-  { echo "FAIL 2 ranks"; tail -n 5 two.log; fails=$((fails + 1)); }
+run_part() { # part, launcher and options
+  local name=$1
+  shift
+  part "$name" || return 0
+  "$@" --set "Output/Directory=$name" > "$name.log" 2>&1 ||
+    { echo "FAIL the run $name"; tail -n 5 "$name.log"; exit 1; }
+}
+run_part one "$DENSIFY" "$scene" "${control[@]}" "${fast[@]}"
+run_part slow "$DENSIFY" "$scene" "${control[@]}"
+run_part lower_one "$DENSIFY" "$scene" "${lower[@]}"
+run_part windows "$DENSIFY" "$scene" --set "Output/Interval=0" --set "Time stepping/Number of steps=10" \
+  --set "Tools/Upper punch/Force history=0.2:100, 0.4:100; 0.6:150, 0.8:150" "${fast[@]}"
+run_part two "$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${control[@]}" "${fast[@]}"
+run_part lower_two "$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${lower[@]}"
+part check || exit 0
 for run in one two; do
   awk -F, -v run=$run 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     { d[$1] = $c["punch_displacement"]; f[$1] = $c["upper_punch_force"]
@@ -105,9 +106,6 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     exit bad > 0 }' slow/statistics.csv || fails=$((fails + 1))
 
 # the lower punch under force control
-"$MPIEXEC" -np 2 "$DENSIFY" "$scene" "${lower[@]}" \
-  --set "Output/Directory=lower_two" > lower_two.log 2>&1 ||
-  { echo "FAIL the lower punch, 2 ranks"; tail -n 5 lower_two.log; fails=$((fails + 1)); }
 for run in lower_one lower_two; do
   awk -F, -v run=$run 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
     function abs(x) { return x < 0 ? -x : x }
