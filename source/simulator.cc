@@ -850,9 +850,16 @@ namespace densify
           step < n_steps && (signalled || step == control.stop_after);
         // the snapshot for the guard's checkpoint at most every 50 times
         // its own cost in run time (every station of the light layer, every
-        // few of the paper scene), so that it costs at most 2 %
+        // few of the paper scene), so that it costs at most 2 %. Each rank
+        // reads its own clock, so the ranks agree on it: taking a snapshot
+        // is collective (its timer section synchronises the ranks), and a
+        // rank that took one alone would wait there forever
         if (guard.judging() && step < n_steps &&
-            s.wall_seconds - guard_snapshot_wall >= 50. * guard_snapshot_cost)
+            Utilities::MPI::max(s.wall_seconds - guard_snapshot_wall >=
+                                    50. * guard_snapshot_cost ?
+                                  1 :
+                                  0,
+                                comm) > 0)
           {
             Timer snapshot;
             guard_snapshot      = checkpoint_snapshot(step, s.wall_seconds);
