@@ -586,8 +586,10 @@ namespace densify
         "gmres-amg, gmres-lu or direct); false: only eps n n^T and the "
         "friction law's stiffness; auto: true for frictionless particle "
         "contact unless the linear solver is cg-amg, false with friction. "
-        "It changes how Newton converges, not the converged answer; change "
-        "it when Newton stalls on sliding contacts.",
+        "It changes how Newton converges, not the equations the converged "
+        "state solves; where several equilibria lie near (the path of "
+        "friction, an unstable frictionless packing) it can reach another "
+        "one. Change it when Newton stalls on sliding contacts.",
         Patterns::Selection("auto|true|false"));
       prm.add_parameter(
         "Contact points",
