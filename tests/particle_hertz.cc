@@ -28,8 +28,10 @@
 // buckling sideways and holds the spin about the axis, which frictionless
 // contact leaves free but for the faceting (the spring force is printed
 // relative to the punch force). The geometric contact tangent (on with the
-// direct solver) makes the last Newton iterations quadratic; without it and
-// the spin spring, Newton stalls with a torque about the axis.
+// direct solver) makes the last Newton iterations quadratic (20 / 29 / 19
+// Newton iterations a step against 26 / 37 / 40 without it, the same
+// forces); without the spin spring Newton stalls with a torque about the
+// axis.
 #include <deal.II/base/mpi.h>
 
 #include <densify/simulator.h>
