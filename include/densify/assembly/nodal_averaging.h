@@ -12,6 +12,7 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/cell_volume_barrier.h>
 #include <densify/material/material.h>
 #include <densify/parameters.h>
@@ -24,9 +25,6 @@
 
 namespace densify
 {
-  class AllValues;
-  class LocalForces;
-
   /**
    * Internal forces and tangent of linear tetrahedra with the volume ratio
    * averaged over vertex patches (Bonet & Burton 1998, "averaged nodal
@@ -96,8 +94,9 @@ namespace densify
     /**
      * Add the internal forces at @p solution (which must hold the values of
      * all DoFs) to @p residual and, if @p tangent is not nullptr, their
-     * derivative to @p tangent. @p materials is indexed by the cells'
-     * material id; @p committed and @p trial hold four states per cell
+     * derivative to @p tangent (one kernel for both, kernel(), on plain
+     * arrays of the solution and the forces). @p materials is indexed by the
+     * cells' material id; @p committed and @p trial hold four states per cell
      * (index active_cell_index * 4 + vertex), or are nullptr. Returns an
      * empty string, or the message of the first material failure (e.g. an
      * inverted element); then the caller must not use the result.
@@ -120,13 +119,14 @@ namespace densify
 
     /**
      * The internal forces alone, for explicit dynamics: add them at
-     * @p solution (all DoFs' values) to @p residual. The same forces as
-     * assemble() without a tangent, to round-off
-     * (tests/nodal_averaging_consistency.cc); for laws whose corners share
+     * @p solution (all DoFs' values) to @p residual. The same kernel as
+     * assemble() (source/assembly/nodal_averaging_kernel.cc) without the
+     * tangent's terms and with shared corners: for laws whose corners share
      * the Kirchhoff deviator (Material::kirchhoff_deviator()) one return
-     * mapping a cell and the corner terms summed in closed form
-     * (source/assembly/nodal_averaging_forces.cc). Returns an empty string
-     * or the message of the first material failure, as assemble().
+     * mapping a cell and the corner terms summed in closed form; the same
+     * forces as assemble() with a tangent to round-off
+     * (tests/nodal_averaging_consistency.cc). Returns an empty string or the
+     * message of the first material failure, as assemble().
      */
     std::string
     forces(const AllValues                                    &solution,
@@ -185,18 +185,6 @@ namespace densify
       unsigned int offset = 0;
     };
 
-    /// Kinematics of one cell in the current state.
-    struct CellState
-    {
-      Tensor<2, 3> F;
-      /// Volume measure: det F (finite strain) or 1 + tr(F - I).
-      double j = 1.;
-      /// d j / d u_i.
-      std::array<double, 12> dj;
-      /// F^{-T} grad_i (finite strain), for the geometric terms.
-      std::array<Tensor<1, 3>, 12> h;
-    };
-
     /// F = I + Grad u of cell @p c at @p solution (P1: constant in the cell).
     static Tensor<2, 3>
     deformation_gradient(const Cell                          &c,
@@ -205,6 +193,24 @@ namespace densify
     /// The message of an inverted cell @p c with volume measure @p j.
     static std::string
     inverted(const Cell &c, const double j);
+
+    /**
+     * The element kernel of assemble() and forces(): the internal forces at
+     * @p solution added to @p residual, and with @p with_tangent their
+     * derivative added to @p tangent (not nullptr then). With
+     * @p shared_corners (forces alone) the return mapping runs once a cell
+     * where the law allows it (see assemble()). Returns an empty string or
+     * the message of the first material failure.
+     */
+    template <bool with_tangent>
+    std::string
+    kernel(const AllValues                                    &solution,
+           const std::vector<std::shared_ptr<const Material>> &materials,
+           const std::vector<MaterialState>                   *committed,
+           std::vector<MaterialState>                         *trial,
+           LocalForces                                        &residual,
+           TrilinosWrappers::SparseMatrix                     *tangent,
+           const bool                                          shared_corners);
 
     std::vector<Cell>  cells;
     std::vector<Patch> patches;
@@ -216,17 +222,22 @@ namespace densify
     /// tangent terms; per vertex, the averaged volume measure, its
     /// logarithm (forces() with a cell volume weight) and the scalars S
     /// (pressure) and beta.
-    std::vector<double>    U, U_prime;
-    std::vector<double>    j_bar, log_j_bar, S, beta;
-    std::vector<CellState> state;
-    /// The kinematics of forces() per cell, in compact arrays: F, F^{-T}
-    /// (finite strain), the volume measure j and d j / d u_i.
+    std::vector<double> U, U_prime;
+    std::vector<double> j_bar, log_j_bar, S, beta;
+    /// The kinematics per cell, in compact arrays: F, F^{-T} (finite
+    /// strain), the volume measure j and d j / d u_i.
     std::vector<Tensor<2, 3>>           cell_F, inverse_transpose;
     std::vector<double>                 cell_j;
     std::vector<std::array<double, 12>> cell_dj;
     /// The cells whose kinematics this rank needs: those in the patch of a
     /// vertex of a locally owned cell (all cells on one rank).
     std::vector<unsigned int> needed_cells;
+    /// assemble()'s plain arrays of the solution and of the forces.
+    AllValues   solution_values;
+    LocalForces residual_forces;
+    /// Work space of add_block() and add_cell_block().
+    std::vector<std::pair<int, unsigned int>> columns;
+    std::vector<types::global_dof_index>      cell_dofs;
 
     /**
      * Where the entries of each block (the 12 x 12 matrix of an owned cell,
@@ -261,6 +272,22 @@ namespace densify
                const types::global_dof_index  *dofs,
                const FullMatrix<double>       &M,
                std::vector<double>            &row) const;
+
+    /// A += M on the rows and columns @p dofs, merged into the rows'
+    /// sorted indices (for blocks without a placement).
+    void
+    add_block(TrilinosWrappers::SparseMatrix             &A,
+              const std::vector<types::global_dof_index> &dofs,
+              const FullMatrix<double>                   &M);
+
+    /// A += M for the 12 x 12 block of cell @p e: through the placement if
+    /// @p placed, else by add_block().
+    void
+    add_cell_block(TrilinosWrappers::SparseMatrix &A,
+                   const bool                      placed,
+                   const unsigned int              e,
+                   const FullMatrix<double>       &M,
+                   std::vector<double>            &row);
 
     /// A += u v^T + y z^T on the rows and columns @p dofs of block
     /// @p block, through the placement, without forming the matrix.
