@@ -387,13 +387,13 @@ namespace densify
 
 
   Tensor<2, 3>
-  NodalAveraging::deformation_gradient(
-    const Cell                          &c,
-    const TrilinosWrappers::MPI::Vector &solution)
+  NodalAveraging::deformation_gradient(const unsigned int e,
+                                       const AllValues   &solution) const
   {
+    const Cell  &c = cells[e];
     Tensor<2, 3> F = unit_symmetric_tensor<3>();
     for (unsigned int i = 0; i < 12; ++i)
-      F[c.component[i]] += solution(c.dofs[i]) * c.grad[i];
+      F[c.component[i]] += solution[c.dofs[i]] * c.grad[i];
     return F;
   }
 
@@ -469,14 +469,14 @@ namespace densify
 
   std::vector<double>
   NodalAveraging::vertex_volume_measures(
-    const TrilinosWrappers::MPI::Vector                &solution,
+    const AllValues                                    &solution,
     const std::vector<std::shared_ptr<const Material>> &materials) const
   {
     std::vector<double> averaged(patches.size(), 0.);
     for (const unsigned int e : needed_cells)
       {
         const Cell        &c = cells[e];
-        const Tensor<2, 3> F = deformation_gradient(c, solution);
+        const Tensor<2, 3> F = deformation_gradient(e, solution);
         const double       j = materials[c.material]->finite_strain() ?
                                  determinant(F) :
                                  trace(F) - 2.;

@@ -68,7 +68,11 @@ namespace densify
           std::max_element(weight.begin(), weight.end()) - weight.begin();
       }
     if (nodal_averaging)
-      j_bar = nodal_averaging->vertex_volume_measures(solution, materials);
+      {
+        values_of_dofs.gather(solution);
+        j_bar =
+          nodal_averaging->vertex_volume_measures(values_of_dofs, materials);
+      }
   }
 
 
@@ -77,9 +81,28 @@ namespace densify
   MaterialPoints::reinit(
     const typename DoFHandler<3>::active_cell_iterator &cell)
   {
-    const FEValuesExtractors::Vector u(0);
-    fe_values.reinit(cell);
-    fe_values[u].get_function_gradients(solution, grad_u);
+    if (nodal_averaging)
+      {
+        // P1: F is constant in the cell and each corner point carries V/4;
+        // from the F-bar's own cell data, without a mapping
+        const unsigned int e = cell->active_cell_index();
+        const Tensor<2, 3> F =
+          nodal_averaging->deformation_gradient(e, values_of_dofs);
+        const double JxW = nodal_averaging->reference_volume(e) / 4.;
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          {
+            grad_u[q]     = F - unit_symmetric_tensor<3>();
+            values[q].JxW = JxW;
+          }
+      }
+    else
+      {
+        const FEValuesExtractors::Vector u(0);
+        fe_values.reinit(cell);
+        fe_values[u].get_function_gradients(solution, grad_u);
+        for (unsigned int q = 0; q < rule.size(); ++q)
+          values[q].JxW = fe_values.JxW(q);
+      }
     const Material &material = *materials[cell->material_id()];
     const bool      finite   = material.finite_strain();
     Tensor<2, 3>    P;
@@ -87,7 +110,6 @@ namespace densify
       {
         MaterialPointValues &v = values[q];
         Tensor<2, 3>         F = unit_symmetric_tensor<3>() + grad_u[q];
-        v.JxW                  = fe_values.JxW(q);
         v.volume_ratio = finite ? determinant(F) : 1. + trace(grad_u[q]);
         // with the nodal-averaged F-bar the material sees the corner's Fbar
         // (F alone would give the cell's own, locking volume change to the

@@ -4,9 +4,12 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/postprocess/particle_measures.h>
 #include <densify/utilities.h>
 
+#include <array>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -23,53 +26,130 @@ namespace densify
     const std::vector<std::shared_ptr<const Material>> &materials,
     const MPI_Comm                                      comm)
   {
-    const QGaussSimplex<3>           quadrature(degree + 1);
-    FEValues<3>                      fe_values(mapping,
-                          dof_handler.get_fe(),
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    const FEValuesExtractors::Vector u(0);
-    std::vector<Tensor<1, 3>>        u_q(quadrature.size());
-    std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
     // per particle, with r = X - centre: [0] current volume, [1] reference
     // volume, [2..4] int u, [5..7] int r x u, [8..10] int r, [11..19] the
     // inertia tensor int (|r|^2 I - r r)
     constexpr unsigned int n = 20;
     std::vector<double>    sums(n * particles.size(), 0.);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+    // adds the integrands' terms at a point of weight JxW of particle p
+    const auto add = [&](const unsigned int  p,
+                         const double        volume_measure,
+                         const double        JxW,
+                         const Tensor<1, 3> &r,
+                         const Tensor<1, 3> &u_at_point,
+                         const Tensor<2, 3> &r_u,
+                         const Tensor<2, 3> &r_r) {
+      double      *sum = &sums[n * p];
+      Tensor<1, 3> r_x_u;
+      r_x_u[0] = r_u[1][2] - r_u[2][1];
+      r_x_u[1] = r_u[2][0] - r_u[0][2];
+      r_x_u[2] = r_u[0][1] - r_u[1][0];
+      sum[0] += volume_measure * JxW;
+      sum[1] += JxW;
+      for (unsigned int d = 0; d < 3; ++d)
         {
-          fe_values.reinit(cell);
-          fe_values[u].get_function_values(solution, u_q);
-          fe_values[u].get_function_gradients(solution, grad_u);
-          const unsigned int p      = cell->material_id();
-          double            *sum    = &sums[n * p];
-          const bool         finite = materials[p]->finite_strain();
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          sum[2 + d] += u_at_point[d] * JxW;
+          sum[5 + d] += r_x_u[d];
+          sum[8 + d] += r[d] * JxW;
+          for (unsigned int e = 0; e < 3; ++e)
+            sum[11 + 3 * d + e] += (d == e ? trace(r_r) : 0.) - r_r[d][e];
+        }
+    };
+    if (degree == 1)
+      {
+        // linear tetrahedra: u and r are linear in the cell, so the
+        // integrals of the quadratic integrands have closed forms in the
+        // vertex values, int f g = V/20 (sum_v f_v g_v + sum_v f_v sum_v
+        // g_v) and int f = V/4 sum_v f_v, the values of a rule exact for
+        // quadratics, without a mapping
+        AllValues values;
+        values.gather(solution);
+        const FiniteElement<3>              &fe = dof_handler.get_fe();
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
             {
-              const double JxW = fe_values.JxW(q);
-              // volume as the kinematics of the particle's law sees it
-              // (det F is not rotation-free for linearised rotations)
-              sum[0] +=
-                (finite ? determinant(unit_symmetric_tensor<3>() + grad_u[q]) :
-                          1. + trace(grad_u[q])) *
-                JxW;
-              sum[1] += JxW;
-              const Tensor<1, 3> r =
-                fe_values.quadrature_point(q) - particles[p].centre;
-              const Tensor<1, 3> r_x_u = cross_product_3d(r, u_q[q]);
-              for (unsigned int d = 0; d < 3; ++d)
+              cell->get_dof_indices(dofs);
+              const unsigned int          p = cell->material_id();
+              std::array<Tensor<1, 3>, 4> r, u_v;
+              for (unsigned int v = 0; v < 4; ++v)
+                r[v] = cell->vertex(v) - particles[p].centre;
+              for (unsigned int i = 0; i < dofs.size(); ++i)
                 {
-                  sum[2 + d] += u_q[q][d] * JxW;
-                  sum[5 + d] += r_x_u[d] * JxW;
-                  sum[8 + d] += r[d] * JxW;
-                  for (unsigned int e = 0; e < 3; ++e)
-                    sum[11 + 3 * d + e] +=
-                      ((d == e ? r * r : 0.) - r[d] * r[e]) * JxW;
+                  const auto [component, vertex] =
+                    fe.system_to_component_index(i);
+                  u_v[vertex][component] = values[dofs[i]];
+                }
+              // F from the vertex values: Grad u = [u1 - u0, u2 - u0,
+              // u3 - u0] [X1 - X0, X2 - X0, X3 - X0]^-1
+              Tensor<2, 3> dX, dU;
+              for (unsigned int v = 1; v < 4; ++v)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    dX[d][v - 1] = r[v][d] - r[0][d];
+                    dU[d][v - 1] = u_v[v][d] - u_v[0][d];
+                  }
+              const double       V      = std::abs(determinant(dX)) / 6.;
+              const Tensor<2, 3> grad_u = dU * invert(dX);
+              const bool         finite = materials[p]->finite_strain();
+              const double       measure =
+                finite ? determinant(unit_symmetric_tensor<3>() + grad_u) :
+                               1. + trace(grad_u);
+              Tensor<1, 3> r_sum, u_sum;
+              Tensor<2, 3> r_u, r_r;
+              for (unsigned int v = 0; v < 4; ++v)
+                {
+                  r_sum += r[v];
+                  u_sum += u_v[v];
+                  r_u += outer_product(r[v], u_v[v]);
+                  r_r += outer_product(r[v], r[v]);
+                }
+              r_u = V / 20. * (r_u + outer_product(r_sum, u_sum));
+              r_r = V / 20. * (r_r + outer_product(r_sum, r_sum));
+              // the means of r and u carry the whole volume
+              add(p, measure, V, r_sum / 4., u_sum / 4., r_u, r_r);
+            }
+      }
+    else
+      {
+        const QGaussSimplex<3>           quadrature(degree + 1);
+        FEValues<3>                      fe_values(mapping,
+                              dof_handler.get_fe(),
+                              quadrature,
+                              update_values | update_gradients |
+                                update_quadrature_points | update_JxW_values);
+        const FEValuesExtractors::Vector u(0);
+        std::vector<Tensor<1, 3>>        u_q(quadrature.size());
+        std::vector<Tensor<2, 3>>        grad_u(quadrature.size());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              fe_values[u].get_function_values(solution, u_q);
+              fe_values[u].get_function_gradients(solution, grad_u);
+              const unsigned int p      = cell->material_id();
+              const bool         finite = materials[p]->finite_strain();
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  const double JxW = fe_values.JxW(q);
+                  // volume as the kinematics of the particle's law sees it
+                  // (det F is not rotation-free for linearised rotations)
+                  const double measure =
+                    finite ?
+                      determinant(unit_symmetric_tensor<3>() + grad_u[q]) :
+                      1. + trace(grad_u[q]);
+                  const Tensor<1, 3> r =
+                    fe_values.quadrature_point(q) - particles[p].centre;
+                  add(p,
+                      measure,
+                      JxW,
+                      r,
+                      u_q[q],
+                      JxW * outer_product(r, u_q[q]),
+                      JxW * outer_product(r, r));
                 }
             }
-        }
+      }
     Utilities::MPI::sum(sums, comm, sums);
     std::vector<ParticleMeasure> measures(particles.size());
     for (unsigned int p = 0; p < particles.size(); ++p)

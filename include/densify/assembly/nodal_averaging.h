@@ -145,8 +145,20 @@ namespace densify
      */
     std::vector<double>
     vertex_volume_measures(
-      const TrilinosWrappers::MPI::Vector                &solution,
+      const AllValues                                    &solution,
       const std::vector<std::shared_ptr<const Material>> &materials) const;
+
+    /// F = I + Grad u of the active cell with index @p e at @p solution
+    /// (P1: constant in the cell).
+    Tensor<2, 3>
+    deformation_gradient(const unsigned int e, const AllValues &solution) const;
+
+    /// The reference volume of the active cell with index @p e (mm^3).
+    double
+    reference_volume(const unsigned int e) const
+    {
+      return cells[e].volume;
+    }
 
   private:
     /// Fixed data of one cell.
@@ -184,11 +196,6 @@ namespace densify
       /// Offset of this patch's DoFs in the flat work arrays.
       unsigned int offset = 0;
     };
-
-    /// F = I + Grad u of cell @p c at @p solution (P1: constant in the cell).
-    static Tensor<2, 3>
-    deformation_gradient(const Cell                          &c,
-                         const TrilinosWrappers::MPI::Vector &solution);
 
     /// The message of an inverted cell @p c with volume measure @p j.
     static std::string

@@ -12,6 +12,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/material/material.h>
 
 #include <cmath>
@@ -105,8 +106,10 @@ namespace densify
     FEValues<3>                                         fe_values;
     /// The reference-cell corner of largest barycentric weight at each point.
     std::vector<unsigned int> nearest_corner;
-    /// The nodal-averaged volume measure of each vertex (with F-bar).
+    /// The nodal-averaged volume measure of each vertex and the values of
+    /// all DoFs (with F-bar).
     std::vector<double>              j_bar;
+    AllValues                        values_of_dofs;
     std::vector<Tensor<2, 3>>        grad_u;
     std::vector<MaterialPointValues> values;
   };
