@@ -88,6 +88,22 @@ namespace densify
           "Solver/Method = explicit needs a mass density: set "
           "Material/Density for the material 'custom'");
 
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          OwnedCell c;
+          c.index    = cell->active_cell_index();
+          c.material = cell->material_id();
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              c.corners[v] = cell->vertex(v);
+              for (unsigned int d = 0; d < 3; ++d)
+                c.dofs[3 * v + d] = cell->vertex_dof_index(v, d);
+            }
+          c.volume = cell->measure();
+          owned_cells.push_back(c);
+        }
+
     // each vertex's share of the particle surface (a third of each
     // boundary triangle), on the reference configuration
     const MPI_Comm comm = dof_handler.get_communicator();
@@ -124,40 +140,33 @@ namespace densify
     // 1. the unscaled stable step of every owned cell in the current
     //    configuration
     std::vector<double> volume(factor.size(), 0.);
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          std::array<Point<3>, 4> x;
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              x[v] = cell->vertex(v);
-              for (unsigned int c = 0; c < 3; ++c)
-                x[v][c] += u(cell->vertex_dof_index(v, c));
-            }
-          const auto [V, G, G_max] = tetrahedron_measures(x);
-          (void)V;
-          const Material    &m = *materials[cell->material_id()];
-          const unsigned int e = cell->active_cell_index();
-          // the smaller of the two bounds of the largest eigenvalue of the
-          // element stiffness per volume (doc/theory.md)
-          const double stiffness =
-            std::min(m.p_wave_modulus() * G, 3. * m.bulk_modulus() * G_max);
-          step_unscaled[e] = 1. / std::sqrt(stiffness / m.density());
-          volume[e]        = cell->measure();
-        }
+    displacement.gather(u);
+    for (const OwnedCell &c : owned_cells)
+      {
+        std::array<Point<3>, 4> x = c.corners;
+        for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[v][d] += displacement[c.dofs[3 * v + d]];
+        const auto [V, G, G_max] = tetrahedron_measures(x);
+        (void)V;
+        const Material &m = *materials[c.material];
+        // the smaller of the two bounds of the largest eigenvalue of the
+        // element stiffness per volume (doc/theory.md)
+        const double stiffness =
+          std::min(m.p_wave_modulus() * G, 3. * m.bulk_modulus() * G_max);
+        step_unscaled[c.index] = 1. / std::sqrt(stiffness / m.density());
+        volume[c.index]        = c.volume;
+      }
 
     // 2. the contact springs' share: with omega_c^2 = kappa omega_e^2 the
     //    stable step is the elements' one over sqrt(1 + kappa); with mass
     //    scaling the factors then follow from the elements alone
     //    (omega_c^2 falls with the mass as omega_e^2 does)
     double min_unscaled = std::numeric_limits<double>::infinity();
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int e = cell->active_cell_index();
-          min_unscaled =
-            std::min(min_unscaled, step_unscaled[e] * std::sqrt(factor[e]));
-        }
+    for (const OwnedCell &c : owned_cells)
+      min_unscaled =
+        std::min(min_unscaled,
+                 step_unscaled[c.index] * std::sqrt(factor[c.index]));
     min_unscaled        = Utilities::MPI::min(min_unscaled, comm);
     double spring_share = 1.;
     if (!penalty.empty() && last_mass.size() > 0)
@@ -173,47 +182,42 @@ namespace densify
         const double target =
           required_step * std::sqrt(spring_share * calibration);
         double needed = 1.;
-        for (const auto &cell : dof_handler->active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              const unsigned int e = cell->active_cell_index();
-              const double       r = target / step_unscaled[e];
-              needed               = std::max(needed, r * r);
-              if (scaling == MassScaling::selective)
-                factor[e] = std::max(factor[e], r * r);
-            }
+        for (const OwnedCell &c : owned_cells)
+          {
+            const double r = target / step_unscaled[c.index];
+            needed         = std::max(needed, r * r);
+            if (scaling == MassScaling::selective)
+              factor[c.index] = std::max(factor[c.index], r * r);
+          }
         if (scaling == MassScaling::uniform)
           {
             needed = Utilities::MPI::max(needed, comm);
-            for (const auto &cell : dof_handler->active_cell_iterators())
-              if (cell->is_locally_owned())
-                factor[cell->active_cell_index()] =
-                  std::max(factor[cell->active_cell_index()], needed);
+            for (const OwnedCell &c : owned_cells)
+              factor[c.index] = std::max(factor[c.index], needed);
           }
       }
 
     // 3. the lumped mass and the measures of the scaled mesh
     mass.reinit(owned, comm);
+    mass_sums.start(mass);
     double              physical = 0., scaled = 0.;
     double              min_step = std::numeric_limits<double>::infinity();
     std::vector<double> part_mass(n_parts, 0.), part_c2(n_parts, 0.);
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int e   = cell->active_cell_index();
-          const unsigned int p   = cell->material_id();
-          const Material    &m   = *materials[p];
-          const double       m_e = m.density() * factor[e] * volume[e];
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int c = 0; c < 3; ++c)
-              mass(cell->vertex_dof_index(v, c)) += m_e / 4.;
-          physical += m.density() * volume[e];
-          scaled += m_e;
-          part_mass[p] += m_e;
-          part_c2[p] += m_e * m.p_wave_modulus() / (m.density() * factor[e]);
-          min_step =
-            std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
-        }
+    for (const OwnedCell &c : owned_cells)
+      {
+        const unsigned int e   = c.index;
+        const unsigned int p   = c.material;
+        const Material    &m   = *materials[p];
+        const double       m_e = m.density() * factor[e] * volume[e];
+        for (const types::global_dof_index dof : c.dofs)
+          mass_sums.add(dof, m_e / 4.);
+        physical += m.density() * volume[e];
+        scaled += m_e;
+        part_mass[p] += m_e;
+        part_c2[p] += m_e * m.p_wave_modulus() / (m.density() * factor[e]);
+        min_step = std::min(min_step, step_unscaled[e] * std::sqrt(factor[e]));
+      }
+    mass_sums.finish(mass);
     mass.compress(VectorOperation::add);
     physical = Utilities::MPI::sum(physical, comm);
     scaled   = Utilities::MPI::sum(scaled, comm);
@@ -267,74 +271,85 @@ namespace densify
     std::vector<std::array<Tensor<1, 3>, 4>> g(n_cells);
     std::vector<Tensor<2, 3>>                grad(n_cells);
     std::array<Point<3>, 4>                  corner;
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int e = cell->active_cell_index();
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              corner[v] = cell->vertex(v);
-              for (unsigned int c = 0; c < 3; ++c)
-                corner[v][c] += u(cell->vertex_dof_index(v, c));
-            }
-          V[e] = tetrahedron_gradients(corner, g[e]);
-          if (!(V[e] > 0.))
-            continue;
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int c = 0; c < 3; ++c)
-              grad[e][c] += x(cell->vertex_dof_index(v, c)) * g[e][v];
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              sums(cell->vertex_dof_index(v, 0)) += V[e] * trace(grad[e]);
-              volumes(cell->vertex_dof_index(v, 0)) += V[e];
-            }
-        }
+    AllValues                                u_values, x_values;
+    u_values.gather(u);
+    x_values.gather(x);
+    LocalForces sum_values, volume_values;
+    sum_values.start(sums);
+    volume_values.start(volumes);
+    for (const OwnedCell &c : owned_cells)
+      {
+        const unsigned int e = c.index;
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            corner[v] = c.corners[v];
+            for (unsigned int d = 0; d < 3; ++d)
+              corner[v][d] += u_values[c.dofs[3 * v + d]];
+          }
+        V[e] = tetrahedron_gradients(corner, g[e]);
+        if (!(V[e] > 0.))
+          continue;
+        for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            grad[e][d] += x_values[c.dofs[3 * v + d]] * g[e][v];
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            sum_values.add(c.dofs[3 * v], V[e] * trace(grad[e]));
+            volume_values.add(c.dofs[3 * v], V[e]);
+          }
+      }
+    sum_values.finish(sums);
+    volume_values.finish(volumes);
     sums.compress(VectorOperation::add);
     volumes.compress(VectorOperation::add);
     TrilinosWrappers::MPI::Vector sums_ghosted(x), volumes_ghosted(x);
     sums_ghosted    = sums;
     volumes_ghosted = volumes;
+    AllValues patch_sums, patch_volumes;
+    patch_sums.gather(sums_ghosted);
+    patch_volumes.gather(volumes_ghosted);
 
     Kx = 0.;
-    for (const auto &cell : dof_handler->active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const unsigned int e = cell->active_cell_index();
-          if (!(V[e] > 0.))
-            continue;
-          const Material &m  = *materials[cell->material_id()];
-          const double    K  = m.bulk_modulus();
-          const double    mu = 0.75 * (m.p_wave_modulus() - K);
-          // the mean of the corners' patch-averaged volume changes,
-          // blended with the cell's own by the stabilisation weight
-          double theta = 0.;
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const types::global_dof_index i = cell->vertex_dof_index(v, 0);
-              theta += sums_ghosted(i) / volumes_ghosted(i) / 4.;
-            }
-          const double alpha =
-            cell->material_id() < cell_volume_weights.size() ?
-              cell_volume_weights[cell->material_id()] :
-              0.;
-          theta = (1. - alpha) * theta + alpha * trace(grad[e]);
-          // a cell beyond the barrier's band adds its own volume change
-          // with the barrier's stiffness (CellVolumeBarrier)
-          const double k_barrier =
-            volume_barrier.excess(std::log(V[e] / cell->measure())) != 0. ?
-              volume_barrier.modulus(cell->material_id()) :
-              0.;
-          const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
-          const SymmetricTensor<2, 3> sigma =
-            2. * mu * deviator(eps) + (K * theta + k_barrier * trace(grad[e])) *
-                                        unit_symmetric_tensor<3>();
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const Tensor<1, 3> f = V[e] * (sigma * g[e][v]);
-              for (unsigned int c = 0; c < 3; ++c)
-                Kx(cell->vertex_dof_index(v, c)) += f[c];
-            }
-        }
+    LocalForces products;
+    products.start(Kx);
+    for (const OwnedCell &c : owned_cells)
+      {
+        const unsigned int e = c.index;
+        if (!(V[e] > 0.))
+          continue;
+        const Material &m  = *materials[c.material];
+        const double    K  = m.bulk_modulus();
+        const double    mu = 0.75 * (m.p_wave_modulus() - K);
+        // the mean of the corners' patch-averaged volume changes,
+        // blended with the cell's own by the stabilisation weight
+        double theta = 0.;
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            const types::global_dof_index i = c.dofs[3 * v];
+            theta += patch_sums[i] / patch_volumes[i] / 4.;
+          }
+        const double alpha = c.material < cell_volume_weights.size() ?
+                               cell_volume_weights[c.material] :
+                               0.;
+        theta              = (1. - alpha) * theta + alpha * trace(grad[e]);
+        // a cell beyond the barrier's band adds its own volume change
+        // with the barrier's stiffness (CellVolumeBarrier)
+        const double k_barrier =
+          volume_barrier.excess(std::log(V[e] / c.volume)) != 0. ?
+            volume_barrier.modulus(c.material) :
+            0.;
+        const SymmetricTensor<2, 3> eps = symmetrize(grad[e]);
+        const SymmetricTensor<2, 3> sigma =
+          2. * mu * deviator(eps) +
+          (K * theta + k_barrier * trace(grad[e])) * unit_symmetric_tensor<3>();
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            const Tensor<1, 3> f = V[e] * (sigma * g[e][v]);
+            for (unsigned int d = 0; d < 3; ++d)
+              products.add(c.dofs[3 * v + d], f[d]);
+          }
+      }
+    products.finish(Kx);
     Kx.compress(VectorOperation::add);
   }
 

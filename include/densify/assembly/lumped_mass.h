@@ -6,9 +6,11 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <densify/assembly/all_values.h>
 #include <densify/assembly/cell_volume_barrier.h>
 #include <densify/material/material.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -198,6 +200,20 @@ namespace densify
     /// Per active cell: mass-scaling factor, and the stable step with
     /// factor 1 at the last update.
     std::vector<double> factor, step_unscaled;
+    /// The fixed data of a locally owned cell for update(): its active cell
+    /// index and material id, the DoFs of its vertices (vertex by vertex,
+    /// components in order), its reference corners and volume.
+    struct OwnedCell
+    {
+      unsigned int                            index, material;
+      std::array<types::global_dof_index, 12> dofs;
+      std::array<Point<3>, 4>                 corners;
+      double                                  volume;
+    };
+    std::vector<OwnedCell> owned_cells;
+    /// update()'s plain arrays of the displacement and of the masses.
+    AllValues   displacement;
+    LocalForces mass_sums;
     /// Share of the surface area of each vertex DoF (component 0; mm^2).
     TrilinosWrappers::MPI::Vector area;
     /// The lumped mass of the last update.
