@@ -227,8 +227,7 @@ namespace densify
     CellVolumeBarrier volume_barrier;
     /// Work arrays: per patch DoF, the vectors U and U' of the rank-one
     /// tangent terms; per vertex, the averaged volume measure, its
-    /// logarithm and the scalars S
-    /// (pressure) and beta.
+    /// logarithm and the scalars S (pressure) and beta.
     std::vector<double> U, U_prime;
     std::vector<double> j_bar, log_j_bar, S, beta;
     /// The kinematics per cell, in compact arrays: F, F^{-T} (finite
