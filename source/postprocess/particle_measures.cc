@@ -31,7 +31,9 @@ namespace densify
     // inertia tensor int (|r|^2 I - r r)
     constexpr unsigned int n = 20;
     std::vector<double>    sums(n * particles.size(), 0.);
-    // adds the integrands' terms at a point of weight JxW of particle p
+    // adds to particle p's sums a point of weight JxW with the volume
+    // measure, r and u there, and the integrals of r (x) u and r (x) r over
+    // the point's share
     const auto add = [&](const unsigned int  p,
                          const double        volume_measure,
                          const double        JxW,
