@@ -217,6 +217,27 @@ namespace densify
       plain && out.new_assignment == nullptr && near.enabled;
     if (use_lists)
       update_near_lists(x_now, *out.values);
+    // each surface vertex once for all its slave points (NearLists)
+    const bool by_vertex = use_lists && near.by_vertex && near.at_corners;
+    const auto evaluated = [&](const unsigned int idx) {
+      return !by_vertex || near.copy_start[idx] < near.copy_start[idx + 1];
+    };
+    std::vector<char> pressed(by_vertex ? slave_faces.size() * n_q : 0, 0);
+    // the slave facet's current over its reference area (flat)
+    const auto area_ratio_of = [&](const Facet &slave) {
+      const auto vertex = [&](const unsigned int a) {
+        return slave.cell->vertex_index(slave.local_vertex[a]);
+      };
+      const auto area = [](const Tensor<1, 3> &e1, const Tensor<1, 3> &e2) {
+        return cross_product_3d(e1, e2).norm();
+      };
+      return area(x_now[vertex(1)] - x_now[vertex(0)],
+                  x_now[vertex(2)] - x_now[vertex(0)]) /
+             area(slave.cell->vertex(slave.local_vertex[1]) -
+                    slave.cell->vertex(slave.local_vertex[0]),
+                  slave.cell->vertex(slave.local_vertex[2]) -
+                    slave.cell->vertex(slave.local_vertex[0]));
+    };
     // the scalar shape functions of the base element behind each vector
     // one (the same values as fe.shape_value(), a third of the calls)
     std::vector<unsigned int> base_index(n_dofs);
@@ -267,25 +288,13 @@ namespace densify
             for (auto *v : {&post_p, &post_slip, &post_status, &post_weights})
               v->reinit(n_post);
           }
-        // the slave facet's current over its reference area (flat), and
-        // whether one of its points carries a pressure
-        double area_ratio      = 0.;
-        bool   face_in_contact = false;
-        if (begin < end)
+        // whether one of the facet's points carries a pressure
+        bool face_in_contact = false;
+        bool face_evaluated  = false;
+        for (unsigned int q = 0; q < n_q; ++q)
+          face_evaluated = face_evaluated || evaluated(k * n_q + q);
+        if (begin < end && face_evaluated)
           {
-            const auto slave_vertex = [&](const unsigned int a) {
-              return slave.cell->vertex_index(slave.local_vertex[a]);
-            };
-            const auto area = [](const Tensor<1, 3> &e1,
-                                 const Tensor<1, 3> &e2) {
-              return cross_product_3d(e1, e2).norm();
-            };
-            area_ratio = area(x_now[slave_vertex(1)] - x_now[slave_vertex(0)],
-                              x_now[slave_vertex(2)] - x_now[slave_vertex(0)]) /
-                         area(slave.cell->vertex(slave.local_vertex[1]) -
-                                slave.cell->vertex(slave.local_vertex[0]),
-                              slave.cell->vertex(slave.local_vertex[2]) -
-                                slave.cell->vertex(slave.local_vertex[0]));
             if (plain)
               {
                 tables.values(k, *out.values, u_values);
@@ -308,14 +317,26 @@ namespace densify
           }
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const double JxW   = plain ? tables.JxW(k, q) : fe_face->JxW(q);
+            const unsigned int idx = k * n_q + q;
+            // by vertex: the weight of all the vertex's slave points
+            const double JxW   = by_vertex ? near.weight[idx] :
+                                 plain     ? tables.JxW(k, q) :
+                                             fe_face->JxW(q);
             double       p_out = 0, slip_out = 0, status_out = 0;
-            if (begin < end)
+            // the slave points whose traction this evaluation gives
+            const unsigned int *copy_first =
+                                 by_vertex ?
+                                   near.copies.data() + near.copy_start[idx] :
+                                   &idx,
+                               *copy_last = by_vertex ?
+                                              near.copies.data() +
+                                                near.copy_start[idx + 1] :
+                                              &idx + 1;
+            if (begin < end && evaluated(idx))
               {
                 const Point<3> x_s =
                   (plain ? tables.point(k, q) : fe_face->quadrature_point(q)) +
                   u_values[q];
-                const unsigned int idx = k * n_q + q;
                 const unsigned int kept =
                   (out.new_assignment != nullptr || assigned.empty()) ?
                     numbers::invalid_unsigned_int :
@@ -454,7 +475,9 @@ namespace densify
                   ++(*out.n_changed);
                 if (out.new_lambda != nullptr)
                   {
-                    (*out.new_lambda)[idx] = p;
+                    for (const unsigned int *c = copy_first; c != copy_last;
+                         ++c)
+                      (*out.new_lambda)[*c] = p;
                     // d(p^2 / 2 eps) / d lambda times the multiplier's
                     // change per unit relaxation
                     result.multiplier_work +=
@@ -462,10 +485,14 @@ namespace densify
                   }
                 if (out.new_traction != nullptr && friction_on)
                   {
-                    (*out.new_traction)[idx] = r.traction;
-                    const Tensor<1, 3> slip  = delta - (delta * n) * n;
-                    if (r.status == ContactStatus::slip)
-                      (*out.new_slip)[idx] += slip.norm();
+                    const Tensor<1, 3> slip = delta - (delta * n) * n;
+                    for (const unsigned int *c = copy_first; c != copy_last;
+                         ++c)
+                      {
+                        (*out.new_traction)[*c] = r.traction;
+                        if (r.status == ContactStatus::slip)
+                          (*out.new_slip)[*c] += slip.norm();
+                      }
                     // the traction t = -eps_t s_e opposes the slip beyond
                     // the spring's elastic slip s_e (the arctangent law has
                     // no spring: all slip work is dissipated)
@@ -481,6 +508,9 @@ namespace densify
                   }
                 result.max_penetration = std::max(result.max_penetration, -g);
                 face_in_contact        = face_in_contact || p > 0.;
+                if (by_vertex && p > 0.)
+                  for (const unsigned int *c = copy_first; c != copy_last; ++c)
+                    pressed[*c] = 1;
                 const bool predicted =
                   (p <= 0. && out.matrix != nullptr && g < out.tangent_margin);
                 if (p > 0. || predicted)
@@ -504,9 +534,9 @@ namespace densify
                       }
                     if (p > 0.)
                       {
-                        ++result.n_active;
+                        result.n_active += copy_last - copy_first;
                         if (friction_on && r.status == ContactStatus::slip)
-                          ++result.n_slip;
+                          result.n_slip += copy_last - copy_first;
                         result.normal_force += weight * p * JxW;
                         // the potential p^2 / 2 eps of p = max(0, lambda -
                         // eps g) and the stick spring's
@@ -647,10 +677,13 @@ namespace densify
                   post_weights(i) += v;
                 }
           }
-        if (face_in_contact)
-          for (unsigned int q = 0; q < n_q; ++q)
-            result.contact_area += weight * area_ratio *
-                                   (plain ? tables.JxW(k, q) : fe_face->JxW(q));
+        if (face_in_contact && !by_vertex)
+          {
+            const double ratio = area_ratio_of(slave);
+            for (unsigned int q = 0; q < n_q; ++q)
+              result.contact_area +=
+                weight * ratio * (plain ? tables.JxW(k, q) : fe_face->JxW(q));
+          }
         if (post_face)
           add_surface_field_values(post_indices,
                                    post_p,
@@ -659,6 +692,16 @@ namespace densify
                                    post_weights,
                                    *out.sums);
       }
+
+    // by vertex: the facets one of whose points carries a pressure
+    if (by_vertex)
+      for (unsigned int k = 0; k < slave_faces.size(); ++k)
+        if (std::any_of(pressed.begin() + k * n_q,
+                        pressed.begin() + (k + 1) * n_q,
+                        [](const char c) { return c != 0; }))
+          for (unsigned int q = 0; q < n_q; ++q)
+            result.contact_area +=
+              weight * area_ratio_of(facets[slave_faces[k]]) * tables.JxW(k, q);
 
     // one reduction for the sums (the counts are exact in doubles)
     std::array<double, 8> sums{{result.normal_force,

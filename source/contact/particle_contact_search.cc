@@ -302,12 +302,61 @@ namespace densify
         if (16. * moved2 < 0.81 * near.reach * near.reach)
           return;
       }
-    const unsigned int                           n_q = face_quadrature.size();
+    const unsigned int n_q      = face_quadrature.size();
+    const unsigned int n_points = slave_faces.size() * n_q;
+    if (!near.corners_checked)
+      {
+        // is every slave point a corner of its facet (its reference position
+        // the vertex's)?
+        near.corners_checked = true;
+        near.at_corners      = true;
+        near.point_vertex.assign(n_points, numbers::invalid_unsigned_int);
+        for (unsigned int k = 0; k < slave_faces.size(); ++k)
+          {
+            const Facet &f    = facets[slave_faces[k]];
+            const double size = (f.position[1] - f.position[0]).norm();
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                unsigned int &vertex = near.point_vertex[k * n_q + q];
+                for (unsigned int a = 0; a < 3; ++a)
+                  if ((tables.point(k, q) - f.position[a]).norm() <=
+                      1e-12 * size)
+                    vertex = f.vertex[a];
+                near.at_corners =
+                  near.at_corners && vertex != numbers::invalid_unsigned_int;
+              }
+          }
+      }
+    const bool by_vertex = near.by_vertex && near.at_corners;
+    // by vertex: the slave points with candidates ordered by their vertex,
+    // then by index; each vertex's run is evaluated at its first point
+    std::vector<std::pair<unsigned int, unsigned int>> order;
+    std::vector<std::pair<unsigned int, unsigned int>> run;
+    if (by_vertex)
+      {
+        for (unsigned int k = 0; k < slave_faces.size(); ++k)
+          if (candidate_start[k] < candidate_start[k + 1])
+            for (unsigned int q = 0; q < n_q; ++q)
+              order.emplace_back(near.point_vertex[k * n_q + q], k * n_q + q);
+        std::sort(order.begin(), order.end());
+        run.assign(n_points, {0, 0});
+        for (unsigned int a = 0, b = 0; a < order.size(); a = b)
+          {
+            while (b < order.size() && order[b].first == order[a].first)
+              ++b;
+            run[order[a].second] = {a, b};
+          }
+      }
+
     std::vector<Tensor<1, 3>>                    u_values(n_q);
+    std::vector<unsigned int>                    merged;
     std::vector<double>                          distance;
     std::vector<std::pair<unsigned int, double>> closest;
     near.start.assign(1, 0);
     near.facets.clear();
+    near.copy_start.assign(1, 0);
+    near.copies.clear();
+    near.weight.assign(by_vertex ? n_points : 0, 0.);
     for (unsigned int k = 0; k < slave_faces.size(); ++k)
       {
         const unsigned int begin = candidate_start[k],
@@ -316,38 +365,72 @@ namespace densify
           tables.values(k, values, u_values);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            if (begin < end)
+            const unsigned int  idx   = k * n_q + q;
+            const unsigned int *first = candidates.data() + begin,
+                               *last  = candidates.data() + end;
+            if (by_vertex && begin < end)
+              {
+                // the copies and the union of their faces' candidates
+                for (unsigned int c = run[idx].first; c < run[idx].second; ++c)
+                  {
+                    const unsigned int copy = order[c].second;
+                    near.copies.push_back(copy);
+                    near.weight[idx] += tables.JxW(copy / n_q, copy % n_q);
+                  }
+                if (run[idx].second > run[idx].first + 1)
+                  {
+                    merged.clear();
+                    for (unsigned int c = run[idx].first; c < run[idx].second;
+                         ++c)
+                      {
+                        const unsigned int face = order[c].second / n_q;
+                        merged.insert(merged.end(),
+                                      candidates.data() + candidate_start[face],
+                                      candidates.data() +
+                                        candidate_start[face + 1]);
+                      }
+                    std::sort(merged.begin(), merged.end());
+                    merged.erase(std::unique(merged.begin(), merged.end()),
+                                 merged.end());
+                    first = merged.data();
+                    last  = merged.data() + merged.size();
+                  }
+                else if (run[idx].second == run[idx].first)
+                  last = first; // a copy of a vertex evaluated elsewhere
+              }
+            if (first < last)
               {
                 const Point<3> x_s = tables.point(k, q) + u_values[q];
                 // per master particle the facets within the reach of its
                 // closest one (choose_facet() takes each particle's closest)
-                distance.resize(end - begin);
+                distance.resize(last - first);
                 closest.clear();
-                for (unsigned int c = begin; c < end; ++c)
+                for (const unsigned int *c = first; c != last; ++c)
                   {
                     double d2;
-                    project(x_s, candidates[c], x_now, 0., d2, false);
-                    distance[c - begin]  = std::sqrt(d2);
-                    const unsigned int p = facets[candidates[c]].particle;
+                    project(x_s, *c, x_now, 0., d2, false);
+                    distance[c - first]  = std::sqrt(d2);
+                    const unsigned int p = facets[*c].particle;
                     auto               o = closest.begin();
                     while (o != closest.end() && o->first != p)
                       ++o;
                     if (o == closest.end())
-                      closest.emplace_back(p, distance[c - begin]);
+                      closest.emplace_back(p, distance[c - first]);
                     else
-                      o->second = std::min(o->second, distance[c - begin]);
+                      o->second = std::min(o->second, distance[c - first]);
                   }
-                for (unsigned int c = begin; c < end; ++c)
+                for (const unsigned int *c = first; c != last; ++c)
                   {
-                    const unsigned int p = facets[candidates[c]].particle;
+                    const unsigned int p = facets[*c].particle;
                     auto               o = closest.begin();
                     while (o->first != p)
                       ++o;
-                    if (distance[c - begin] <= o->second + near.reach)
-                      near.facets.push_back(candidates[c]);
+                    if (distance[c - first] <= o->second + near.reach)
+                      near.facets.push_back(*c);
                   }
               }
             near.start.push_back(near.facets.size());
+            near.copy_start.push_back(near.copies.size());
           }
       }
     near.reference.resize(surface_vertices.size());

@@ -43,6 +43,7 @@ namespace densify
     penalty           = penalty_per_particle;
     face_quadrature   = contact_quadrature;
     tables            = FaceTables();
+    vertices          = Vertices();
     shift.assign(tools.size(), Tensor<1, 3>());
     committed_shift = shift;
     faces.clear();
@@ -200,7 +201,12 @@ namespace densify
       return true;
     };
 
-    for (unsigned int k = 0; k < faces.size(); ++k)
+    // linear elements with their corners as contact points: each surface
+    // vertex once (the explicit pass)
+    const bool by_vertex = plain && out.post == nullptr &&
+                           out.matrix == nullptr && vertex_evaluation &&
+                           vertex_pass(out, result);
+    for (unsigned int k = 0; !by_vertex && k < faces.size(); ++k)
       {
         const auto &[cell, f] = faces[k];
         if (may_skip && far_from_tools(k))
@@ -279,39 +285,23 @@ namespace densify
                   delta,
                   (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
                   rough ? friction_laws[t] : FrictionLaw());
-                const double p = r.pressure;
-                if (out.new_lambda != nullptr)
-                  {
-                    (*out.new_lambda)[idx] = p;
-                    // d(p^2 / 2 eps) / d lambda times the multiplier's
-                    // change per unit relaxation
-                    result.multiplier_work += p / eps * (p - lambda[idx]) * JxW;
-                  }
-                if (out.new_traction != nullptr && rough)
-                  {
-                    (*out.new_traction)[idx] = r.traction;
-                    const Tensor<1, 3> slip  = delta - (delta * n) * n;
-                    if (r.status == ContactStatus::slip)
-                      (*out.new_slip)[idx] += slip.norm();
-                    // the traction t = -eps_t s_e opposes the slip beyond
-                    // the spring's elastic slip s_e (the arctangent law has
-                    // no spring: all slip work is dissipated)
-                    const bool spring =
-                      friction_laws[t].model == FrictionModel::coulomb;
-                    result.friction_work -=
-                      (r.traction *
-                       (spring ?
-                          Tensor<1, 3>(
-                            slip +
-                            (r.traction - committed_traction[idx]) /
-                              (friction_laws[t].tangential_ratio * eps)) :
-                          slip)) *
-                      JxW;
-                  }
-                result.max_penetration = std::max(result.max_penetration, -g);
-                const bool predicted =
+                const double       p       = r.pressure;
+                const unsigned int point   = k * n_q + q;
+                const bool         pressed = record(r,
+                                            g,
+                                            n,
+                                            delta,
+                                            t,
+                                            eps,
+                                            JxW,
+                                            cell->material_id(),
+                                            &point,
+                                            &point + 1,
+                                            out,
+                                            result);
+                const bool         predicted =
                   (p <= 0. && out.matrix != nullptr && g < out.tangent_margin);
-                if (p <= 0. && !predicted)
+                if (!pressed && !predicted)
                   continue;
                 if (!have_phi)
                   {
@@ -339,9 +329,6 @@ namespace densify
                     continue;
                   }
                 const Tensor<1, 3> traction = p * n + r.traction;
-                if (out.particle_force != nullptr &&
-                    tool.kind == out.force_kind)
-                  (*out.particle_force)[cell->material_id()] += p * JxW;
                 p_sum += p;
                 if (rough)
                   {
@@ -351,23 +338,6 @@ namespace densify
                   }
                 else
                   status_max = std::max(status_max, 2.);
-                ++result.n_active;
-                if (r.status == ContactStatus::slip && rough)
-                  ++result.n_slip;
-                const unsigned int kind = static_cast<unsigned int>(tool.kind);
-                // the potential p^2 / 2 eps of p = max(0, lambda - eps g)
-                // and the stick spring's
-                result.elastic_energy +=
-                  0.5 *
-                  (p * p +
-                   (rough && friction_laws[t].model == FrictionModel::coulomb ?
-                      r.traction.norm_square() /
-                        friction_laws[t].tangential_ratio :
-                      0.)) /
-                  eps * JxW;
-                result.normal_force[kind] += p * JxW;
-                result.axial_force[kind] += traction[2] * JxW;
-                result.friction_force[kind] += r.traction * JxW;
                 if (out.residual == nullptr)
                   continue;
                 touched = true;
@@ -462,6 +432,205 @@ namespace densify
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
+  }
+
+
+
+  bool
+  ToolContact::record(const ContactResponse &r,
+                      const double           g,
+                      const Tensor<1, 3>    &n,
+                      const Tensor<1, 3>    &delta,
+                      const unsigned int     t,
+                      const double           eps,
+                      const double           JxW,
+                      const unsigned int     material,
+                      const unsigned int    *copy_first,
+                      const unsigned int    *copy_last,
+                      const Outputs         &out,
+                      ToolContactResult     &result) const
+  {
+    const unsigned int n_tools = tool_list.size();
+    const unsigned int idx     = *copy_first * n_tools + t;
+    const bool         rough   = has_friction() && friction_laws[t].mu > 0.;
+    const double       p       = r.pressure;
+    if (out.new_lambda != nullptr)
+      {
+        for (const unsigned int *c = copy_first; c != copy_last; ++c)
+          (*out.new_lambda)[*c * n_tools + t] = p;
+        // d(p^2 / 2 eps) / d lambda times the multiplier's change per unit
+        // relaxation
+        result.multiplier_work += p / eps * (p - lambda[idx]) * JxW;
+      }
+    if (out.new_traction != nullptr && rough)
+      {
+        const Tensor<1, 3> slip = delta - (delta * n) * n;
+        for (const unsigned int *c = copy_first; c != copy_last; ++c)
+          {
+            (*out.new_traction)[*c * n_tools + t] = r.traction;
+            if (r.status == ContactStatus::slip)
+              (*out.new_slip)[*c * n_tools + t] += slip.norm();
+          }
+        // the traction t = -eps_t s_e opposes the slip beyond the spring's
+        // elastic slip s_e (the arctangent law has no spring: all slip work
+        // is dissipated)
+        const bool spring = friction_laws[t].model == FrictionModel::coulomb;
+        result.friction_work -=
+          (r.traction *
+           (spring ?
+              Tensor<1, 3>(slip + (r.traction - committed_traction[idx]) /
+                                    (friction_laws[t].tangential_ratio * eps)) :
+              slip)) *
+          JxW;
+      }
+    result.max_penetration = std::max(result.max_penetration, -g);
+    if (p <= 0.)
+      return false;
+    const RigidTool &tool = tool_list[t];
+    if (out.particle_force != nullptr && tool.kind == out.force_kind)
+      (*out.particle_force)[material] += p * JxW;
+    result.n_active += copy_last - copy_first;
+    if (r.status == ContactStatus::slip && rough)
+      result.n_slip += copy_last - copy_first;
+    const unsigned int kind = static_cast<unsigned int>(tool.kind);
+    // the potential p^2 / 2 eps of p = max(0, lambda - eps g) and the stick
+    // spring's
+    result.elastic_energy +=
+      0.5 *
+      (p * p + (rough && friction_laws[t].model == FrictionModel::coulomb ?
+                  r.traction.norm_square() / friction_laws[t].tangential_ratio :
+                  0.)) /
+      eps * JxW;
+    result.normal_force[kind] += p * JxW;
+    result.axial_force[kind] += (p * n + r.traction)[2] * JxW;
+    result.friction_force[kind] += r.traction * JxW;
+    return true;
+  }
+
+
+
+  bool
+  ToolContact::vertex_pass(const Outputs &out, ToolContactResult &result) const
+  {
+    const unsigned int n_q     = face_quadrature.size();
+    const unsigned int n_tools = tool_list.size();
+    if (!vertices.checked)
+      {
+        // each slave point's corner (its reference position is the
+        // corner's), the points ordered by their vertex (its first DoF)
+        vertices.checked = true;
+        std::vector<std::array<types::global_dof_index, 3>> order;
+        for (unsigned int k = 0; k < faces.size(); ++k)
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double size =
+                (face_vertices[3 * k + 1] - face_vertices[3 * k]).norm();
+              unsigned int corner = numbers::invalid_unsigned_int;
+              for (unsigned int v = 0; v < 3; ++v)
+                if ((tables.point(k, q) - face_vertices[3 * k + v]).norm() <=
+                    1e-12 * size)
+                  corner = v;
+              if (corner == numbers::invalid_unsigned_int ||
+                  dof_handler->get_fe().degree != 1)
+                return false;
+              order.push_back(
+                {{face_vertex_dofs[9 * k + 3 * corner], k * n_q + q, corner}});
+            }
+        std::sort(order.begin(), order.end());
+        vertices.copy_start.assign(1, 0);
+        for (unsigned int a = 0, b = 0; a < order.size(); a = b)
+          {
+            const unsigned int k = order[a][1] / n_q, v = order[a][2];
+            vertices.position.push_back(face_vertices[3 * k + v]);
+            vertices.dofs.push_back({{face_vertex_dofs[9 * k + 3 * v],
+                                      face_vertex_dofs[9 * k + 3 * v + 1],
+                                      face_vertex_dofs[9 * k + 3 * v + 2]}});
+            vertices.material.push_back(faces[k].first->material_id());
+            double weight = 0.;
+            for (b = a; b < order.size() && order[b][0] == order[a][0]; ++b)
+              {
+                vertices.copies.push_back(order[b][1]);
+                weight += tables.JxW(order[b][1] / n_q, order[b][1] % n_q);
+              }
+            vertices.copy_start.push_back(vertices.copies.size());
+            vertices.weight.push_back(weight);
+          }
+      }
+    if (vertices.position.empty() && !faces.empty())
+      return false;
+
+    const bool friction_on = has_friction();
+    for (unsigned int j = 0; j < vertices.position.size(); ++j)
+      {
+        const auto  &dofs = vertices.dofs[j];
+        Tensor<1, 3> u, u_old;
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            u[d] = (*out.values)[dofs[d]];
+            if (friction_on)
+              u_old[d] = (*out.committed_values)[dofs[d]];
+          }
+        const Point<3>      x   = vertices.position[j] + u;
+        const double        eps = penalty[vertices.material[j]];
+        const double        JxW = vertices.weight[j];
+        const unsigned int *first =
+                             vertices.copies.data() + vertices.copy_start[j],
+                           *last = vertices.copies.data() +
+                                   vertices.copy_start[j + 1];
+        for (unsigned int t = 0; t < n_tools; ++t)
+          {
+            Tensor<1, 3>       n;
+            double             curvature;
+            const double       g   = tool_list[t].gap(x, n, curvature);
+            const unsigned int idx = *first * n_tools + t;
+            if (g > lambda[idx] / eps)
+              {
+                // open: no pressure, no traction
+                for (const unsigned int *c = first; c != last; ++c)
+                  {
+                    if (out.new_lambda != nullptr)
+                      (*out.new_lambda)[*c * n_tools + t] = 0.;
+                    if (out.new_traction != nullptr && friction_on &&
+                        friction_laws[t].mu > 0.)
+                      (*out.new_traction)[*c * n_tools + t] = Tensor<1, 3>();
+                  }
+                continue;
+              }
+            const bool         rough = friction_on && friction_laws[t].mu > 0.;
+            const Tensor<1, 3> delta =
+              rough ?
+                Tensor<1, 3>(u - u_old - (shift[t] - committed_shift[t])) :
+                Tensor<1, 3>();
+            const ContactResponse r = evaluate_contact_law(
+              lambda[idx],
+              g,
+              eps,
+              n,
+              rough ? committed_traction[idx] : Tensor<1, 3>(),
+              delta,
+              (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
+              rough ? friction_laws[t] : FrictionLaw());
+            if (record(r,
+                       g,
+                       n,
+                       delta,
+                       t,
+                       eps,
+                       JxW,
+                       vertices.material[j],
+                       first,
+                       last,
+                       out,
+                       result) &&
+                out.residual != nullptr)
+              {
+                const Tensor<1, 3> traction = r.pressure * n + r.traction;
+                for (unsigned int d = 0; d < 3; ++d)
+                  out.plain_residual->add(dofs[d], -traction[d] * JxW);
+              }
+          }
+      }
+    return true;
   }
 
 

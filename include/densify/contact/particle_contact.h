@@ -202,6 +202,17 @@ namespace densify
       near.valid   = false;
     }
 
+    /// With @p on false the explicit pass evaluates every slave point on its
+    /// own, also where several slave points sit at one surface vertex (the
+    /// reference the evaluation per vertex is tested against; on by
+    /// default; NearLists).
+    void
+    set_vertex_evaluation(const bool on)
+    {
+      near.by_vertex = on;
+      near.valid     = false;
+    }
+
     /// How many times the explicit pass has built its near lists (the
     /// closest facet of a slave point is searched among all candidates only
     /// then; NearLists).
@@ -397,6 +408,30 @@ namespace densify
       unsigned int builds = 0;
       /// False: every candidate searched at every evaluation.
       bool enabled = true;
+
+      /**
+       * Slave points at the surface vertices (P1 with the facet corners as
+       * contact points): a vertex is a slave point of each of its about six
+       * facets, and all those copies see the same displacement, the same
+       * candidates near it and the same history, so they give the same
+       * traction. The explicit pass then evaluates each vertex once, at its
+       * first slave point (its representative), with the copies' summed
+       * weight, searching the union of their candidate facets, and writes
+       * the multiplier and friction history to every copy; the forces are
+       * those of the evaluation per point up to the order of the additions.
+       */
+      bool by_vertex = true;
+      /// Whether every slave point is a facet corner (checked at the first
+      /// build); the evaluation per vertex needs it.
+      bool at_corners = false, corners_checked = false;
+      /// Per slave point, the global index of its vertex.
+      std::vector<unsigned int> point_vertex;
+      /// Per slave point, the slave points it is evaluated for (CSR, size:
+      /// points + 1; itself among them): empty for a copy whose vertex is
+      /// evaluated at another point and for a point without candidates.
+      std::vector<unsigned int> copy_start, copies;
+      /// Per representative slave point, the summed JxW of its copies.
+      std::vector<double> weight;
     };
     mutable NearLists near;
 

@@ -180,6 +180,15 @@ namespace densify
       committed_shift = saved.translation;
     }
 
+    /// With @p on false the explicit pass evaluates every slave point of
+    /// every face on its own (the reference vertex_pass() is tested
+    /// against; on by default).
+    void
+    set_vertex_evaluation(const bool on)
+    {
+      vertex_evaluation = on;
+    }
+
   protected:
     ToolContactResult
     pass(const Mapping<3>                    &mapping,
@@ -213,6 +222,57 @@ namespace densify
     loop(const Mapping<3>                    &mapping,
          const TrilinosWrappers::MPI::Vector &solution,
          const Outputs                       &out) const;
+
+    /**
+     * Account for the response @p r of tool @p t at a slave point (or at
+     * the slave points [@p copy_first, @p copy_last) that sit at one vertex,
+     * all with the same state) with gap @p g, normal @p n, relative slip
+     * @p delta, penalty @p eps and weight @p JxW of particle @p material:
+     * the new multipliers and friction history of @p out, the work and the
+     * sums of @p result. Returns whether the point carries a pressure.
+     */
+    bool
+    record(const ContactResponse &r,
+           const double           g,
+           const Tensor<1, 3>    &n,
+           const Tensor<1, 3>    &delta,
+           const unsigned int     t,
+           const double           eps,
+           const double           JxW,
+           const unsigned int     material,
+           const unsigned int    *copy_first,
+           const unsigned int    *copy_last,
+           const Outputs         &out,
+           ToolContactResult     &result) const;
+
+    /**
+     * The explicit pass (plain arrays, no tangent) for linear elements
+     * whose contact points are the facet corners: each surface vertex is
+     * evaluated once for the slave points of all its faces (about six,
+     * which see the same displacement and carry the same history) with their
+     * summed weight, and its gap to a tool decides alone whether it is in
+     * contact. The same forces as the pass over the faces' points, but for
+     * the order of the additions. Returns false (and does nothing) where
+     * the contact points are not all corners.
+     */
+    bool
+    vertex_pass(const Outputs &out, ToolContactResult &result) const;
+
+    /// The surface vertices of the faces for vertex_pass(), made with the
+    /// face tables: reference position, DoFs, particle, the slave points at
+    /// it (CSR) and their summed JxW.
+    struct Vertices
+    {
+      bool                                                checked = false;
+      std::vector<Point<3>>                               position;
+      std::vector<std::array<types::global_dof_index, 3>> dofs;
+      std::vector<unsigned int>                           material;
+      std::vector<unsigned int>                           copy_start, copies;
+      std::vector<double>                                 weight;
+    };
+    mutable Vertices vertices;
+    /// Whether the explicit pass may evaluate per vertex.
+    bool vertex_evaluation = true;
 
     const DoFHandler<3>      *dof_handler = nullptr;
     std::vector<RigidTool>    tool_list;
