@@ -35,35 +35,7 @@
 #include <iomanip>
 #include <iostream>
 
-namespace
-{
-  using namespace densify;
-
-  /// The displacement that moves particle 1 by @p shift and deforms both
-  /// particles by a small smooth field (fully ghosted).
-  TrilinosWrappers::MPI::Vector
-  displacement(const DoFHandler<3> &dof_handler, const Tensor<1, 3> &shift)
-  {
-    TrilinosWrappers::MPI::Vector owned(dof_handler.locally_owned_dofs(),
-                                        MPI_COMM_WORLD);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const Point<3> &x = cell->vertex(v);
-            for (unsigned int d = 0; d < 3; ++d)
-              owned(cell->vertex_dof_index(v, d)) =
-                (cell->material_id() == 1 ? shift[d] : 0.) +
-                1e-3 * std::sin(2. * x[d] + x[(d + 1) % 3]);
-          }
-    owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
-                                      complete_index_set(dof_handler.n_dofs()),
-                                      MPI_COMM_WORLD);
-    all = owned;
-    return all;
-  }
-} // namespace
+using namespace densify;
 
 int
 main(int argc, char **argv)
@@ -91,8 +63,10 @@ main(int argc, char **argv)
                      {1e5, 1e5},
                      FrictionLaw(),
                      testing::facet_corners());
-      contact->update_search(displacement(dof_handler,
-                                          Tensor<1, 3>({0., 0., -overlap})),
+      contact->update_search(testing::smooth_displacement(dof_handler,
+                                                          Tensor<1, 3>(
+                                                            {0., 0., -overlap}),
+                                                          1),
                              0.05);
     }
 
@@ -102,9 +76,8 @@ main(int argc, char **argv)
   unsigned int active = 0, active_differences = 0;
   for (unsigned int k = 0; k <= n; ++k)
     {
-      const TrilinosWrappers::MPI::Vector u =
-        displacement(dof_handler,
-                     Tensor<1, 3>({0.12 * k / n, 0.03 * k / n, -overlap}));
+      const TrilinosWrappers::MPI::Vector u = testing::smooth_displacement(
+        dof_handler, Tensor<1, 3>({0.12 * k / n, 0.03 * k / n, -overlap}), 1);
       AllValues values;
       values.gather(u);
       const auto forces = [&](ParticleContact &contact) {

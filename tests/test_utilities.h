@@ -5,6 +5,10 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature.h>
 
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
 #include <densify/parameters.h>
 
 #include <cmath>
@@ -135,6 +139,35 @@ namespace densify
     {
       parameters.declare(prm);
       read_parameters(prm, source_dir() + "/prm/" + scene, overrides);
+    }
+
+    /// A displacement of linear elements, fully ghosted: @p shift for the
+    /// particles from number @p first_moved on, plus on all a small smooth
+    /// field 1e-3 sin(2 x_d + x_{d+1}) (mm).
+    inline dealii::TrilinosWrappers::MPI::Vector
+    smooth_displacement(const dealii::DoFHandler<3>     &dof_handler,
+                        const dealii::Tensor<1, 3>      &shift,
+                        const dealii::types::material_id first_moved = 0)
+    {
+      dealii::TrilinosWrappers::MPI::Vector owned(
+        dof_handler.locally_owned_dofs(), dof_handler.get_communicator());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const dealii::Point<3> &x = cell->vertex(v);
+              for (unsigned int d = 0; d < 3; ++d)
+                owned(cell->vertex_dof_index(v, d)) =
+                  (cell->material_id() >= first_moved ? shift[d] : 0.) +
+                  1e-3 * std::sin(2. * x[d] + x[(d + 1) % 3]);
+            }
+      owned.compress(dealii::VectorOperation::insert);
+      dealii::TrilinosWrappers::MPI::Vector all(
+        dof_handler.locally_owned_dofs(),
+        dealii::complete_index_set(dof_handler.n_dofs()),
+        dof_handler.get_communicator());
+      all = owned;
+      return all;
     }
   } // namespace testing
 } // namespace densify

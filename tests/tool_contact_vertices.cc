@@ -29,30 +29,6 @@ namespace
 {
   using namespace densify;
 
-  /// Both particles moved by @p shift and deformed by a small smooth field
-  /// (fully ghosted).
-  TrilinosWrappers::MPI::Vector
-  displacement(const DoFHandler<3> &dof_handler, const Tensor<1, 3> &shift)
-  {
-    TrilinosWrappers::MPI::Vector owned(dof_handler.locally_owned_dofs(),
-                                        MPI_COMM_WORLD);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const Point<3> &x = cell->vertex(v);
-            for (unsigned int d = 0; d < 3; ++d)
-              owned(cell->vertex_dof_index(v, d)) =
-                shift[d] + 1e-3 * std::sin(2. * x[d] + x[(d + 1) % 3]);
-          }
-    owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
-                                      complete_index_set(dof_handler.n_dofs()),
-                                      MPI_COMM_WORLD);
-    all = owned;
-    return all;
-  }
-
   /// |a - b| relative to @p scale.
   double
   relative(const double a, const double b, const double scale)
@@ -99,12 +75,11 @@ main(int argc, char **argv)
   double largest = 0., largest_difference = 0., largest_sum_difference = 0.;
   unsigned int most_active = 0, most_slipping = 0, count_differences = 0;
   TrilinosWrappers::MPI::Vector last =
-    displacement(dof_handler, Tensor<1, 3>());
+    testing::smooth_displacement(dof_handler, Tensor<1, 3>());
   for (unsigned int k = 1; k <= n; ++k)
     {
-      const TrilinosWrappers::MPI::Vector u =
-        displacement(dof_handler,
-                     Tensor<1, 3>({0.05 * k / n, 0.02 * k / n, 0.}));
+      const TrilinosWrappers::MPI::Vector u = testing::smooth_displacement(
+        dof_handler, Tensor<1, 3>({0.05 * k / n, 0.02 * k / n, 0.}));
       AllValues values, committed;
       values.gather(u);
       committed.gather(last);

@@ -270,21 +270,10 @@ namespace densify
                 double           curvature;
                 const double     g   = tool.gap(x, n, curvature);
                 const unsigned   idx = (k * n_q + q) * n_tools + t;
-                const bool rough     = friction_on && friction_laws[t].mu > 0.;
-                // relative motion since the last accepted increment
-                const Tensor<1, 3> delta =
-                  rough ? Tensor<1, 3>(u_values[q] - u_old[q] -
-                                       (shift[t] - committed_shift[t])) :
-                          Tensor<1, 3>();
-                const ContactResponse r = evaluate_contact_law(
-                  lambda[idx],
-                  g,
-                  eps,
-                  n,
-                  rough ? committed_traction[idx] : Tensor<1, 3>(),
-                  delta,
-                  (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
-                  rough ? friction_laws[t] : FrictionLaw());
+                const bool   rough   = friction_on && friction_laws[t].mu > 0.;
+                Tensor<1, 3> delta;
+                const ContactResponse r =
+                  respond(idx, t, g, eps, n, u_values[q] - u_old[q], delta);
                 const double       p       = r.pressure;
                 const unsigned int point   = k * n_q + q;
                 const bool         pressed = record(r,
@@ -432,6 +421,32 @@ namespace densify
     result.n_active        = Utilities::MPI::sum(result.n_active, comm);
     result.n_slip          = Utilities::MPI::sum(result.n_slip, comm);
     return result;
+  }
+
+
+
+  ContactResponse
+  ToolContact::respond(const unsigned int  idx,
+                       const unsigned int  t,
+                       const double        g,
+                       const double        eps,
+                       const Tensor<1, 3> &n,
+                       const Tensor<1, 3> &motion,
+                       Tensor<1, 3>       &delta) const
+  {
+    const bool rough = has_friction() && friction_laws[t].mu > 0.;
+    // relative motion since the last accepted increment
+    delta = rough ? Tensor<1, 3>(motion - (shift[t] - committed_shift[t])) :
+                    Tensor<1, 3>();
+    return evaluate_contact_law(
+      lambda[idx],
+      g,
+      eps,
+      n,
+      rough ? committed_traction[idx] : Tensor<1, 3>(),
+      delta,
+      (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
+      rough ? friction_laws[t] : FrictionLaw());
   }
 
 
@@ -596,20 +611,9 @@ namespace densify
                   }
                 continue;
               }
-            const bool         rough = friction_on && friction_laws[t].mu > 0.;
-            const Tensor<1, 3> delta =
-              rough ?
-                Tensor<1, 3>(u - u_old - (shift[t] - committed_shift[t])) :
-                Tensor<1, 3>();
-            const ContactResponse r = evaluate_contact_law(
-              lambda[idx],
-              g,
-              eps,
-              n,
-              rough ? committed_traction[idx] : Tensor<1, 3>(),
-              delta,
-              (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
-              rough ? friction_laws[t] : FrictionLaw());
+            Tensor<1, 3>          delta;
+            const ContactResponse r =
+              respond(idx, t, g, eps, n, u - u_old, delta);
             if (record(r,
                        g,
                        n,

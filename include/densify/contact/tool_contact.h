@@ -224,6 +224,22 @@ namespace densify
          const Outputs                       &out) const;
 
     /**
+     * The contact law of tool @p t at the point with state index @p idx:
+     * gap @p g (mm), normal @p n, penalty @p eps (MPa/mm), and the point's
+     * displacement since the last accepted increment @p motion (mm), which
+     * gives the slip relative to the tool @p delta (mm; zero without
+     * friction).
+     */
+    ContactResponse
+    respond(const unsigned int  idx,
+            const unsigned int  t,
+            const double        g,
+            const double        eps,
+            const Tensor<1, 3> &n,
+            const Tensor<1, 3> &motion,
+            Tensor<1, 3>       &delta) const;
+
+    /**
      * Account for the response @p r of tool @p t at a slave point (or at
      * the slave points [@p copy_first, @p copy_last) that sit at one vertex,
      * all with the same state) with gap @p g, normal @p n, relative slip
