@@ -114,21 +114,14 @@ namespace densify
   ParticleContact::current_vertices(
     const TrilinosWrappers::MPI::Vector &solution) const
   {
-    const Triangulation<3> &tria = dof_handler->get_triangulation();
-    std::vector<Point<3>>   x(tria.n_vertices());
-    std::vector<bool>       done(tria.n_vertices(), false);
-    for (const Facet &facet : facets)
-      for (unsigned int k = 0; k < 4; ++k)
-        {
-          const unsigned int v = facet.local_vertex[k];
-          const unsigned int i = facet.cell->vertex_index(v);
-          if (done[i])
-            continue;
-          done[i] = true;
-          x[i]    = facet.cell->vertex(v);
-          for (unsigned int d = 0; d < 3; ++d)
-            x[i][d] += solution(facet.cell->vertex_dof_index(v, d));
-        }
+    std::vector<Point<3>> x(dof_handler->get_triangulation().n_vertices());
+    for (const SurfaceVertex &vertex : surface_vertices)
+      {
+        Point<3> &y = x[vertex.index];
+        y           = vertex.position;
+        for (unsigned int d = 0; d < 3; ++d)
+          y[d] += solution(vertex.dofs[d]);
+      }
     return x;
   }
 
