@@ -12,8 +12,10 @@
 # Usage (from the source root):
 #   bash benchmarks/explicit_kernel.sh OLD_EXECUTABLE NEW_EXECUTABLE [RUNS] [STATIONS] [RANKS]
 # defaults: 3 runs, 40 stations, 1 rank; SCENE=prm/... another scene (its
-# own Explicit/Number of steps). doc/performance.md, "The explicit force
-# kernels".
+# own Explicit/Number of steps); SET="ENTRY=VALUE;ENTRY=VALUE" more
+# parameter overrides for both builds, e.g. SET="Explicit/Number of
+# steps=10000;Explicit/Ramp fraction=0.2". doc/performance.md, "The explicit
+# force kernels".
 set -eu
 [ $# -ge 2 ] || {
   echo "usage: explicit_kernel.sh OLD NEW [RUNS] [STATIONS] [RANKS]"
@@ -28,6 +30,11 @@ for b in "$old" "$new"; do
   [ -x "$b" ] || { echo "explicit_kernel.sh: $b is not an executable"; exit 2; }
 done
 out=$(mktemp -d)
+overrides=()
+if [ -n "${SET:-}" ]; then
+  IFS=';' read -r -a entries <<< "$SET"
+  for e in "${entries[@]}"; do overrides+=(--set "$e"); done
+fi
 launch=()
 [ "$ranks" -gt 1 ] && launch=(mpirun -np "$ranks")
 for r in $(seq 1 "$runs"); do
@@ -36,7 +43,8 @@ for r in $(seq 1 "$runs"); do
     start=$(date +%s%N)
     "${launch[@]}" "$b" "$scene" --set Solver/Method=explicit \
       --set Output/Interval=0 --set "Output/Checkpoint interval=0" \
-      --set "Output/Directory=$out/$v" --stop-after "$stations" > "$out/$v.$r.log" 2>&1 ||
+      --set "Output/Directory=$out/$v" "${overrides[@]}" \
+      --stop-after "$stations" > "$out/$v.$r.log" 2>&1 ||
       [ $? -eq 3 ] || { echo "explicit_kernel.sh: $b failed ($out/$v.$r.log)"; exit 1; }
     awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN {printf "%.2f\n", (b - a) / 1e9}' > "$out/$v.$r.wall"
   done

@@ -428,7 +428,7 @@ namespace densify
   void
   Simulator::update_ghosts()
   {
-    solution_ghosted = solution;
+    ghost_import(solution, solution_ghosted);
   }
 
 

@@ -466,6 +466,8 @@ namespace densify
 
     TrilinosWrappers::SparseMatrix tangent;
     TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual;
+    /// solution_ghosted = solution with the communication plan kept.
+    GhostImport ghost_import;
     /// The solution of the last accepted increment, with ghost entries
     /// (friction measures slip from it).
     TrilinosWrappers::MPI::Vector committed_ghosted;

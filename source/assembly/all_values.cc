@@ -22,6 +22,27 @@ namespace densify
 
 
   void
+  GhostImport::operator()(const TrilinosWrappers::MPI::Vector &owned,
+                          TrilinosWrappers::MPI::Vector       &ghosted)
+  {
+    const Epetra_BlockMap &from = owned.trilinos_vector().Map();
+    const Epetra_BlockMap &to   = ghosted.trilinos_vector().Map();
+    if (!importer || from.DataPtr() != source->DataPtr() ||
+        to.DataPtr() != target->DataPtr())
+      {
+        source   = std::make_unique<Epetra_BlockMap>(from);
+        target   = std::make_unique<Epetra_BlockMap>(to);
+        importer = std::make_unique<Epetra_Import>(to, from);
+      }
+    const int error = ghosted.trilinos_vector().Import(owned.trilinos_vector(),
+                                                       *importer,
+                                                       Insert);
+    AssertThrow(error == 0, ExcTrilinosError(error));
+  }
+
+
+
+  void
   LocalForces::start(const TrilinosWrappers::MPI::Vector &vector)
   {
     const Epetra_MultiVector &v = vector.trilinos_vector();

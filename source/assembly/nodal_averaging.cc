@@ -145,9 +145,11 @@ namespace densify
         cell->get_dof_indices(dofs);
         for (unsigned int i = 0; i < 12; ++i)
           {
-            c.grad[i]      = fe_values.shape_grad(i, 0);
-            c.component[i] = fe.system_to_component_index(i).first;
-            c.dofs[i]      = dofs[i];
+            // the element's DoF i: component r of the shape function of
+            // vertex v (P1: base function v is that of vertex v)
+            const auto [r, v] = fe.system_to_component_index(i);
+            c.grad[v]         = fe_values.shape_grad(i, 0);
+            c.dofs[3 * v + r] = dofs[i];
           }
         c.volume   = fe_values.JxW(0);
         c.material = cell->material_id();
@@ -163,6 +165,13 @@ namespace densify
             patch.touched = patch.touched || c.owned;
           }
       }
+
+    for (Cell &c : cells)
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          const Patch &patch = patches[c.vertex[v]];
+          c.patch_share[v]   = patch.touched ? c.volume / patch.volume : 0.;
+        }
 
     unsigned int offset = 0;
     for (Patch &patch : patches)
@@ -196,6 +205,9 @@ namespace densify
     for (unsigned int f = 0; f < cells.size(); ++f)
       if (needed[f])
         needed_cells.push_back(f);
+    for (unsigned int e = 0; e < cells.size(); ++e)
+      if (cells[e].owned)
+        owned_cells.push_back(e);
   }
 
 
@@ -393,7 +405,7 @@ namespace densify
     const Cell  &c = cells[e];
     Tensor<2, 3> F = unit_symmetric_tensor<3>();
     for (unsigned int i = 0; i < 12; ++i)
-      F[c.component[i]] += solution[c.dofs[i]] * c.grad[i];
+      F[c.component(i)] += solution[c.dofs[i]] * c.gradient(i);
     return F;
   }
 

@@ -59,6 +59,58 @@ namespace densify
 
 
 
+  std::string
+  NodalAveraging::shared_deviators(
+    const std::vector<std::shared_ptr<const Material>> &materials,
+    const std::vector<MaterialState>                   *committed,
+    std::vector<MaterialState>                         *trial)
+  {
+    cell_tau_dev.resize(cells.size());
+    // batches of one material's cells
+    constexpr unsigned int                          batch_size = 64;
+    std::array<const Tensor<2, 3> *, batch_size>    F;
+    std::array<const MaterialState *, batch_size>   old;
+    std::array<MaterialState *, batch_size>         now;
+    std::array<SymmetricTensor<2, 3> *, batch_size> tau_dev;
+    unsigned int                                    n = 0, material = 0;
+    const auto                                      flush = [&]() {
+      if (n > 0)
+        materials[material]->kirchhoff_deviators(n,
+                                                 F.data(),
+                                                 committed ? old.data() :
+                                                                                                  nullptr,
+                                                 trial ? now.data() : nullptr,
+                                                 tau_dev.data());
+      n = 0;
+    };
+    try
+      {
+        for (const unsigned int e : owned_cells)
+          {
+            const Cell &c = cells[e];
+            if (!shared_law[c.material])
+              continue;
+            if (n > 0 && (c.material != material || n == batch_size))
+              flush();
+            const std::size_t k0 = std::size_t(e) * 4;
+            material             = c.material;
+            F[n]                 = &cell_F[e];
+            old[n]               = committed ? &(*committed)[k0] : nullptr;
+            now[n]               = trial ? &(*trial)[k0] : nullptr;
+            tau_dev[n]           = &cell_tau_dev[e];
+            ++n;
+          }
+        flush();
+      }
+    catch (const std::exception &error)
+      {
+        return error.what();
+      }
+    return "";
+  }
+
+
+
   template <bool with_tangent>
   std::string
   NodalAveraging::kernel(
@@ -78,6 +130,18 @@ namespace densify
     // 1. kinematics of the cells around the vertices of owned cells and
     //    their vertex averages j_a = sum_f V_f j_f / sum_f V_f (complete
     //    at those vertices, the only ones used below)
+    //    Per law, resolved once: finite strain, and whether the corners of
+    //    its cells share the deviator (forces alone, laws with
+    //    Material::kirchhoff_pressure(); see the declaration of assemble())
+    finite_law.resize(materials.size());
+    shared_law.resize(materials.size());
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      {
+        double p_dummy;
+        finite_law[m] = materials[m]->finite_strain();
+        shared_law[m] = !with_tangent && shared_corners && finite_law[m] &&
+                        materials[m]->kirchhoff_pressure(0., p_dummy);
+      }
     j_bar.assign(patches.size(), 0.);
     inverse_transpose.resize(cells.size());
     cell_F.resize(cells.size());
@@ -86,11 +150,11 @@ namespace densify
     for (const unsigned int e : needed_cells)
       {
         const Cell             &c      = cells[e];
-        const bool              finite = materials[c.material]->finite_strain();
+        const bool              finite = finite_law[c.material];
         std::array<double, 12> &dj     = cell_dj[e];
         Tensor<2, 3>            F      = unit_symmetric_tensor<3>();
         for (unsigned int i = 0; i < 12; ++i)
-          F[c.component[i]] += solution[c.dofs[i]] * c.grad[i];
+          F[c.component(i)] += solution[c.dofs[i]] * c.gradient(i);
         cell_F[e] = F;
         double j;
         if (finite)
@@ -103,8 +167,8 @@ namespace densify
             for (unsigned int i = 0; i < 12; ++i)
               {
                 // j (F^{-T} grad N_i)[c_i]
-                const Tensor<1, 3> &g = c.grad[i];
-                const Tensor<1, 3> &f = F_inv_T[c.component[i]];
+                const Tensor<1, 3> &g = c.gradient(i);
+                const Tensor<1, 3> &f = F_inv_T[c.component(i)];
                 dj[i] = j * (f[0] * g[0] + f[1] * g[1] + f[2] * g[2]);
               }
           }
@@ -112,7 +176,7 @@ namespace densify
           {
             j = trace(F) - 2.;
             for (unsigned int i = 0; i < 12; ++i)
-              dj[i] = c.grad[i][c.component[i]];
+              dj[i] = c.gradient(i)[c.component(i)];
           }
         cell_j[e] = j;
         for (unsigned int v = 0; v < 4; ++v)
@@ -126,6 +190,18 @@ namespace densify
         {
           j_bar[a] /= patches[a].volume;
           log_j_bar[a] = j_bar[a] > 0. ? std::log(j_bar[a]) : 0.;
+        }
+
+    // forces alone: the Kirchhoff deviators of the cells whose corners
+    // share them (see below), a material's cells side by side
+    // (Material::kirchhoff_deviators())
+    if constexpr (!with_tangent)
+      if (shared_corners)
+        {
+          const std::string failure =
+            shared_deviators(materials, committed, trial);
+          if (!failure.empty())
+            return failure;
         }
 
     // 2. owned cells: the material at each corner with Fbar(j_a), the
@@ -155,16 +231,14 @@ namespace densify
         std::fill(U_prime.begin(), U_prime.end(), 0.);
         cell_matrix.reinit(12, 12);
       }
-    for (unsigned int e = 0; e < cells.size(); ++e)
+    for (const unsigned int e : owned_cells)
       {
-        const Cell &c = cells[e];
-        if (!c.owned)
-          continue;
+        const Cell                   &c        = cells[e];
         const Tensor<2, 3>           &F        = cell_F[e];
         const double                  j        = cell_j[e];
         const std::array<double, 12> &dj       = cell_dj[e];
         const Material               &material = *materials[c.material];
-        const bool                    finite   = material.finite_strain();
+        const bool                    finite   = finite_law[c.material];
         const double                  w        = c.volume / 4.;
         // the stabilisation: the corner's volume measure depends on j_a
         // with the weight theta = 1 - alpha, so every term that came from
@@ -184,9 +258,7 @@ namespace densify
 
         // forces alone: one return mapping per cell for laws whose corners
         // share the Kirchhoff deviator (see the declaration of assemble())
-        double p_dummy;
-        if (!with_tangent && shared_corners && finite &&
-            material.kirchhoff_pressure(0., p_dummy))
+        if (shared_law[c.material])
           {
             // The corners' stresses tau_a = tau_dev + p_a I differ in the
             // pressure alone, p_a at ln j_a = ln j + theta (ln j_bar_a -
@@ -198,20 +270,8 @@ namespace densify
             //   F^{-T}
             // (P_a = tau_a (sc F)^{-T}, P_a : F = tr tau_a / sc): one return
             // mapping, four pressures and one 3x3 product a cell.
-            const std::size_t     k0 = std::size_t(e) * 4;
-            SymmetricTensor<2, 3> tau_dev;
-            try
-              {
-                material.kirchhoff_deviator(F,
-                                            committed ? &(*committed)[k0] :
-                                                        nullptr,
-                                            trial ? &(*trial)[k0] : nullptr,
-                                            tau_dev);
-              }
-            catch (const std::exception &error)
-              {
-                return error.what();
-              }
+            const std::size_t            k0      = std::size_t(e) * 4;
+            const SymmetricTensor<2, 3> &tau_dev = cell_tau_dev[e];
             if (trial)
               for (unsigned int v = 1; v < 4; ++v)
                 (*trial)[k0 + v] = (*trial)[k0];
@@ -237,8 +297,8 @@ namespace densify
                   (w * alpha_e * p_corners + barrier) * F_inv_T[r_][J_];
             for (unsigned int i = 0; i < 12; ++i)
               {
-                const double       *m = M[c.component[i]];
-                const Tensor<1, 3> &g = c.grad[i];
+                const double       *m = M[c.component(i)];
+                const Tensor<1, 3> &g = c.gradient(i);
                 residual.add(c.dofs[i],
                              m[0] * g[0] + m[1] * g[1] + m[2] * g[2]);
               }
@@ -259,7 +319,7 @@ namespace densify
             X_prime.fill(0.);
             if (finite)
               for (unsigned int i = 0; i < 12; ++i)
-                h[i] = inverse_transpose[e] * c.grad[i];
+                h[i] = inverse_transpose[e] * c.gradient(i);
           }
         for (unsigned int v = 0; v < 4; ++v)
           {
@@ -301,7 +361,7 @@ namespace densify
             const double p   = theta * p_F;
             for (unsigned int i = 0; i < 12; ++i)
               {
-                r[i] = P[c.component[i]] * c.grad[i];
+                r[i] = P[c.component(i)] * c.gradient(i);
                 cell_residual[i] += w * (sc * r[i] - p * t[i]);
               }
             S[a] += w * p / D;
@@ -324,8 +384,8 @@ namespace densify
               (finite ? sc * sc * n_a_n / 9. + p_F / 3. : n_a_n / 9.);
             for (unsigned int i = 0; i < 12; ++i)
               {
-                const double a_i = AN[c.component[i]] * c.grad[i];
-                const double b_i = NA[c.component[i]] * c.grad[i];
+                const double a_i = AN[c.component(i)] * c.gradient(i);
+                const double b_i = NA[c.component(i)] * c.gradient(i);
                 x[i] = theta * (finite ? sc * sc / 3. * a_i + sc / 3. * r[i] :
                                          a_i / 3.);
                 x_prime[i] =
@@ -363,16 +423,17 @@ namespace densify
         for (unsigned int j_ = 0; j_ < 12; ++j_)
           for (unsigned int k2 = 0; k2 < 3; ++k2)
             for (unsigned int J = 0; J < 3; ++J)
-              A_grad[j_][k2][J] = A_sum[k2][J][c.component[j_]] * c.grad[j_];
+              A_grad[j_][k2][J] =
+                A_sum[k2][J][c.component(j_)] * c.gradient(j_);
         for (unsigned int i = 0; i < 12; ++i)
           for (unsigned int j_ = 0; j_ < 12; ++j_)
             {
-              double kij = A_grad[j_][c.component[i]] * c.grad[i] -
+              double kij = A_grad[j_][c.component(i)] * c.gradient(i) -
                            X[i] * t[j_] - t[i] * X_prime[j_] +
                            gamma_sum * t[i] * t[j_];
               if (finite)
-                kij += (p_sum - barrier) * h[i][c.component[j_]] *
-                       h[j_][c.component[i]];
+                kij += (p_sum - barrier) * h[i][c.component(j_)] *
+                       h[j_][c.component(i)];
               if (e_barrier != 0.)
                 kij += k_barrier * t[i] * t[j_];
               cell_matrix(i, j_) = kij;
@@ -390,11 +451,7 @@ namespace densify
         const Cell &c           = cells[e];
         double      coefficient = 0.;
         for (unsigned int v = 0; v < 4; ++v)
-          {
-            const Patch &patch = patches[c.vertex[v]];
-            if (patch.touched)
-              coefficient += S[c.vertex[v]] * c.volume / patch.volume;
-          }
+          coefficient += S[c.vertex[v]] * c.patch_share[v];
         if (coefficient == 0.)
           continue;
         const std::array<double, 12> &dj = cell_dj[e];
@@ -471,12 +528,12 @@ namespace densify
         const double                  jf  = cell_j[f];
         const std::array<double, 12> &djf = cell_dj[f];
         for (unsigned int i = 0; i < 12; ++i)
-          h[i] = inverse_transpose[f] * cf.grad[i];
+          h[i] = inverse_transpose[f] * cf.gradient(i);
         for (unsigned int i = 0; i < 12; ++i)
           for (unsigned int j_ = 0; j_ < 12; ++j_)
             cell_matrix(i, j_) =
               C * (djf[i] * djf[j_] / jf -
-                   jf * h[i][cf.component[j_]] * h[j_][cf.component[i]]);
+                   jf * h[i][cf.component(j_)] * h[j_][cf.component(i)]);
         add_cell_block(*tangent, placed && cf.owned, f, cell_matrix, row);
       }
     return "";

@@ -4,6 +4,10 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_BlockMap.h>
+#include <Epetra_Import.h>
+
+#include <memory>
 #include <vector>
 
 namespace densify
@@ -41,6 +45,31 @@ namespace densify
 
   private:
     std::vector<double> values;
+  };
+
+
+
+  /**
+   * @p ghosted = @p owned for a vector with ghost entries: its owned entries
+   * and its ghosts get the values of the vector without ghosts. deal.II's
+   * assignment between vectors of different layouts makes a new
+   * Epetra_Import at every call, whose set-up sorts and looks up every
+   * ghost index; this class keeps its Epetra_Import while the two layouts
+   * stay the same (it holds copies of both maps, so a layout it has seen
+   * cannot be freed and another one made at its address).
+   */
+  class GhostImport
+  {
+  public:
+    /// Copy the values of @p owned into @p ghosted (owned and ghost
+    /// entries).
+    void
+    operator()(const TrilinosWrappers::MPI::Vector &owned,
+               TrilinosWrappers::MPI::Vector       &ghosted);
+
+  private:
+    std::unique_ptr<Epetra_BlockMap> source, target;
+    std::unique_ptr<Epetra_Import>   importer;
   };
 
 

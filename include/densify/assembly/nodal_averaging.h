@@ -161,25 +161,46 @@ namespace densify
     }
 
   private:
-    /// Fixed data of one cell.
+    /// Fixed data of one cell. Its 12 vector DoFs in the order
+    /// i = 3 v + r (vertex v, component r), whatever the element's own
+    /// order: every array of the kernels that runs over i uses it. The
+    /// fields the force loops read come first (a cell is read three times
+    /// a step).
     struct Cell
     {
-      /// Reference gradient of shape function i (12 vector DoFs).
-      std::array<Tensor<1, 3>, 12> grad;
-      /// Nonzero component of shape function i.
-      std::array<unsigned int, 12> component;
+      /// Reference gradients of the shape functions of the four vertices.
+      std::array<Tensor<1, 3>, 4> grad;
       /// Global DoF indices.
       std::array<types::global_dof_index, 12> dofs;
-      /// Global vertex indices and this cell's slot in each vertex patch.
-      std::array<unsigned int, 4> vertex, slot;
+      /// Global vertex indices.
+      std::array<unsigned int, 4> vertex;
       /// Reference volume (mm^3).
       double volume = 0.;
+      /// V / V_a of the patch of each vertex a, 0 where no locally owned
+      /// cell touches the patch (the weights of the patch terms).
+      std::array<double, 4> patch_share;
       /// Material id (index into the materials; the particle).
       unsigned int material = 0;
-      /// Centre in the reference configuration (mm), for messages.
-      Point<3> centre;
       /// Locally owned?
       bool owned = false;
+      /// This cell's slot in each vertex patch.
+      std::array<unsigned int, 4> slot;
+      /// Centre in the reference configuration (mm), for messages.
+      Point<3> centre;
+
+      /// The reference gradient of shape function @p i.
+      const Tensor<1, 3> &
+      gradient(const unsigned int i) const
+      {
+        return grad[i / 3];
+      }
+
+      /// The nonzero component of shape function @p i.
+      static unsigned int
+      component(const unsigned int i)
+      {
+        return i % 3;
+      }
     };
 
     /// The cells around one vertex and the union of their DoFs.
@@ -219,6 +240,20 @@ namespace densify
            TrilinosWrappers::SparseMatrix                     *tangent,
            const bool                                          shared_corners);
 
+    /**
+     * kernel()'s deviators of the cells whose corners share them (forces
+     * alone): cell_tau_dev[e] of every owned cell of a law with
+     * Material::kirchhoff_pressure() at cell_F[e], and their updated states
+     * at their first corners, a material's cells side by side
+     * (Material::kirchhoff_deviators()). Returns an empty string or the
+     * message of the first material failure.
+     */
+    std::string
+    shared_deviators(
+      const std::vector<std::shared_ptr<const Material>> &materials,
+      const std::vector<MaterialState>                   *committed,
+      std::vector<MaterialState>                         *trial);
+
     std::vector<Cell>  cells;
     std::vector<Patch> patches;
     /// Stabilisation weight alpha per material id.
@@ -232,12 +267,20 @@ namespace densify
     std::vector<double> j_bar, log_j_bar, S, beta;
     /// The kinematics per cell, in compact arrays: F, F^{-T} (finite
     /// strain), the volume measure j and d j / d u_i.
-    std::vector<Tensor<2, 3>>           cell_F, inverse_transpose;
-    std::vector<double>                 cell_j;
+    std::vector<Tensor<2, 3>> cell_F, inverse_transpose;
+    std::vector<double>       cell_j;
+    /// Per material id: finite strain, and whether its cells' corners share
+    /// the Kirchhoff deviator in this kernel call (forces alone).
+    std::vector<char> finite_law, shared_law;
+    /// The Kirchhoff deviator of each owned cell (shared_deviators()).
+    std::vector<SymmetricTensor<2, 3>>  cell_tau_dev;
     std::vector<std::array<double, 12>> cell_dj;
     /// The cells whose kinematics this rank needs: those in the patch of a
     /// vertex of a locally owned cell (all cells on one rank).
     std::vector<unsigned int> needed_cells;
+    /// The locally owned cells (the loops over them do not read the other
+    /// cells' data).
+    std::vector<unsigned int> owned_cells;
     /// assemble()'s plain arrays of the solution and of the forces.
     AllValues   solution_values;
     LocalForces residual_forces;

@@ -205,6 +205,20 @@ namespace densify
                        MaterialState         *trial,
                        SymmetricTensor<2, 3> &tau_dev) const override;
 
+    /**
+     * kirchhoff_deviator() for @p n points side by side in SIMD lanes
+     * (source/material/j2_plasticity_lanes.cc): the trial state, the series
+     * of ln bbar, the radial return and the updated state of four points at
+     * a time; a point whose trial state needs the spectral path (or fails)
+     * takes kirchhoff_deviator() on its own. The same law to round-off.
+     */
+    bool
+    kirchhoff_deviators(const unsigned int            n,
+                        const Tensor<2, 3> *const    *F,
+                        const MaterialState *const   *committed,
+                        MaterialState *const         *trial,
+                        SymmetricTensor<2, 3> *const *tau_dev) const override;
+
     /// The integral of sigma_y from 0 to the state's eps_p (MPa).
     double
     plastic_work(const MaterialState &state) const override;
@@ -274,6 +288,16 @@ namespace densify
             MaterialState       *trial,
             Tensor<2, 3>        &P,
             Tensor<4, 3>        *A) const;
+
+    /// kirchhoff_deviators()'s work (source/material/j2_plasticity_lanes.cc;
+    /// not virtual, so that it can be compiled for more than one
+    /// instruction set).
+    void
+    deviators_in_lanes(const unsigned int            n,
+                       const Tensor<2, 3> *const    *F,
+                       const MaterialState *const   *committed,
+                       MaterialState *const         *trial,
+                       SymmetricTensor<2, 3> *const *tau_dev) const;
 
     /// Plastic multiplier (increment of eps_p) of the radial return for a
     /// trial von Mises stress @p q_trial > sigma_y(@p eps_p_old).

@@ -148,6 +148,29 @@ namespace densify
       return false;
     }
 
+    /**
+     * kirchhoff_deviator() for the @p n points *F[k], committed[k] (nullptr
+     * entries or a nullptr array: the virgin state), trial[k] (or a nullptr
+     * array: no update), *tau_dev[k] at once, so that a law can evaluate
+     * several points side by side in SIMD lanes. The default calls
+     * kirchhoff_deviator() point by point; returns what it returns.
+     */
+    virtual bool
+    kirchhoff_deviators(const unsigned int            n,
+                        const Tensor<2, 3> *const    *F,
+                        const MaterialState *const   *committed,
+                        MaterialState *const         *trial,
+                        SymmetricTensor<2, 3> *const *tau_dev) const
+    {
+      for (unsigned int k = 0; k < n; ++k)
+        if (!kirchhoff_deviator(*F[k],
+                                committed ? committed[k] : nullptr,
+                                trial ? trial[k] : nullptr,
+                                *tau_dev[k]))
+          return false;
+      return true;
+    }
+
     /// Plastic work per unit reference volume dissipated to reach the state
     /// @p state (MPa = mJ/mm^3); 0 for laws without plasticity.
     virtual double
