@@ -22,21 +22,8 @@
 #include <vector>
 
 using namespace densify;
-
-namespace
-{
-  using testing::uniform;
-
-  Tensor<2, 3>
-  random_gradient(std::uint64_t &state, const double size)
-  {
-    Tensor<2, 3> F = unit_symmetric_tensor<3>();
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 3; ++j)
-        F[i][j] += size * uniform(state);
-    return F;
-  }
-} // namespace
+using testing::random_gradient;
+using testing::uniform;
 
 
 

@@ -4,6 +4,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -30,6 +32,17 @@ namespace densify
     {
       state = state * 6364136223846793005ULL + 1442695040888963407ULL;
       return static_cast<double>(state >> 11) * 0x1.0p-52 - 1.;
+    }
+
+    /// I + a matrix of entries uniform in [-@p size, @p size] (uniform()).
+    inline Tensor<2, 3>
+    random_gradient(std::uint64_t &state, const double size)
+    {
+      Tensor<2, 3> F = unit_symmetric_tensor<3>();
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          F[i][j] += size * uniform(state);
+      return F;
     }
 
     /// Set when any check fails, so that the test also fails by exit code.
