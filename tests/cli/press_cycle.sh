@@ -48,8 +48,13 @@
 #      step only), which writes the cycle's plots into its output directory:
 #      density, forces, compaction, ejection and contacts, and the picture
 #      of the ejected compact (view_oblique.png).
+# The uninterrupted cycle with its resumed copy, and the withdrawal, are
+# parts of their own (tests/cli/lib/parts.bash), so ctest runs them side by
+# side.
+# ctest parts: whole withdrawn
 set -u
 cd "$WORK_DIR"
+source "$SOURCE_DIR/tests/cli/lib/parts.bash"
 fails=0
 cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=23"
   --set "Output/Checkpoint interval=16" --set "Tools/Die wall/Diameter=7.52"
@@ -58,8 +63,27 @@ cycle=(--set "Mesh/Element size=0.6" --set "Output/Interval=23"
   --set "Tools/Lower punch/Displacement history=0:0, 0.26:0, 0.46:1"
   --set "Time stepping/End time=0.46" --set "Time stepping/Number of steps=23")
 scene="$SOURCE_DIR/prm/press_cycle_sn_light.prm"
-DENSIFY="$DENSIFY" bash "$SOURCE_DIR/scripts/run.sh" "$scene" "${cycle[@]}" \
-  --set "Output/Directory=whole" > whole.log 2>&1 ||
+if part whole; then
+  DENSIFY="$DENSIFY" bash "$SOURCE_DIR/scripts/run.sh" "$scene" "${cycle[@]}" \
+    --set "Output/Directory=whole" > whole.log 2>&1
+  echo $? > whole.status
+  # its checkpoint after step 16 (the ejection) resumed in a copy
+  rm -rf parts
+  cp -r whole parts
+  "$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=parts" --resume \
+    > resumed.log 2>&1
+  echo $? > resumed.status
+fi
+if part withdrawn; then
+  # ejected by withdrawal: the die lowered instead of the lower punch raised
+  "$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=withdrawn" \
+    --set "Tools/Lower punch/Displacement history=0:0" \
+    --set "Tools/Die wall/Displacement history=0:0, 0.26:0, 0.46:-1" \
+    > withdrawn.log 2>&1
+  echo $? > withdrawn.status
+fi
+part check || exit 0
+[ "$(cat whole.status 2>/dev/null)" = 0 ] ||
   { echo "FAIL the cycle by scripts/run.sh"; tail -n 5 whole.log; fails=$((fails + 1)); }
 for picture in density forces compaction ejection contacts view_oblique; do
   [ "$(head -c 4 "whole/$picture.png" 2>/dev/null | tail -c 3)" = "PNG" ] ||
@@ -117,10 +141,7 @@ grep "Springback" whole.log | grep -q "axial $axial %" ||
   { echo "FAIL the springback line is not the unloaded rows' ($axial %)"; fails=$((fails + 1)); }
 
 # ejected by withdrawal: the die lowered instead of the lower punch raised
-"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=withdrawn" \
-  --set "Tools/Lower punch/Displacement history=0:0" \
-  --set "Tools/Die wall/Displacement history=0:0, 0.26:0, 0.46:-1" \
-  > withdrawn.log 2>&1 ||
+[ "$(cat withdrawn.status 2>/dev/null)" = 0 ] ||
   { echo "FAIL the withdrawal"; tail -n 5 withdrawn.log; fails=$((fails + 1)); }
 paste -d, whole/statistics.csv withdrawn/statistics.csv | awk -F, '
   NR == 1 { n = NF / 2; for (i = 1; i <= n; ++i) c[$i] = i; next }
@@ -139,9 +160,7 @@ grep -q "^Ejection over a lower punch rise of 0 -> 1 mm" withdrawn.log ||
 phase=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   $1 == 16 { print $c["phase"] }' whole/statistics.csv)
 [ "$phase" = 3 ] || { echo "FAIL step 16 is in phase '$phase', not the ejection"; fails=$((fails + 1)); }
-rm -rf parts
-cp -r whole parts
-"$DENSIFY" "$scene" "${cycle[@]}" --set "Output/Directory=parts" --resume > resumed.log 2>&1 &&
+[ "$(cat resumed.status 2>/dev/null)" = 0 ] &&
   grep -q "Resumed from the checkpoint after step 16" resumed.log ||
   { echo "FAIL the resumed run"; tail -n 5 resumed.log; fails=$((fails + 1)); }
 strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_seconds" || $i == "step_seconds") skip[i] = 1 }
