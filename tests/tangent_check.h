@@ -1,5 +1,5 @@
-// Helpers of the tangent tests: a fully ghosted copy of a vector, and the
-// central-difference check of an assembled tangent against its residual.
+// Helper of the tangent tests: the central-difference check of an assembled
+// tangent against its residual.
 #pragma once
 
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -7,6 +7,8 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <deal.II/dofs/dof_handler.h>
+
+#include "test_utilities.h"
 
 #include <algorithm>
 #include <random>
@@ -16,19 +18,6 @@ namespace densify
 {
   namespace testing
   {
-    /// A fully ghosted copy of @p owned.
-    inline dealii::TrilinosWrappers::MPI::Vector
-    ghosted(const dealii::DoFHandler<3>                 &dof_handler,
-            const dealii::TrilinosWrappers::MPI::Vector &owned)
-    {
-      dealii::TrilinosWrappers::MPI::Vector all(
-        dof_handler.locally_owned_dofs(),
-        dealii::complete_index_set(dof_handler.n_dofs()),
-        dof_handler.get_communicator());
-      all = owned;
-      return all;
-    }
-
     /**
      * The largest relative difference |K v - (R(u + h v) - R(u - h v)) / 2h|
      * / |K v| over three random directions v each for h = 1e-6 and 1e-7,

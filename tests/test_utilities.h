@@ -154,6 +154,19 @@ namespace densify
       read_parameters(prm, source_dir() + "/prm/" + scene, overrides);
     }
 
+    /// A fully ghosted copy of @p owned.
+    inline dealii::TrilinosWrappers::MPI::Vector
+    ghosted(const dealii::DoFHandler<3>                 &dof_handler,
+            const dealii::TrilinosWrappers::MPI::Vector &owned)
+    {
+      dealii::TrilinosWrappers::MPI::Vector all(
+        dof_handler.locally_owned_dofs(),
+        dealii::complete_index_set(dof_handler.n_dofs()),
+        dof_handler.get_communicator());
+      all = owned;
+      return all;
+    }
+
     /// A displacement of linear elements, fully ghosted: @p shift for the
     /// particles from number @p first_moved on, plus on all a small smooth
     /// field 1e-3 sin(2 x_d + x_{d+1}) (mm).
@@ -175,12 +188,7 @@ namespace densify
                   1e-3 * std::sin(2. * x[d] + x[(d + 1) % 3]);
             }
       owned.compress(dealii::VectorOperation::insert);
-      dealii::TrilinosWrappers::MPI::Vector all(
-        dof_handler.locally_owned_dofs(),
-        dealii::complete_index_set(dof_handler.n_dofs()),
-        dof_handler.get_communicator());
-      all = owned;
-      return all;
+      return ghosted(dof_handler, owned);
     }
   } // namespace testing
 } // namespace densify

@@ -73,14 +73,12 @@ namespace densify
     std::array<MaterialState *, batch_size>         now;
     std::array<SymmetricTensor<2, 3> *, batch_size> tau_dev;
     unsigned int                                    n = 0, material = 0;
-    const auto                                      flush = [&]() {
+    const MaterialState *const *old_of = committed ? old.data() : nullptr;
+    MaterialState *const       *now_of = trial ? now.data() : nullptr;
+    const auto                  flush  = [&]() {
       if (n > 0)
-        materials[material]->kirchhoff_deviators(n,
-                                                 F.data(),
-                                                 committed ? old.data() :
-                                                                                                  nullptr,
-                                                 trial ? now.data() : nullptr,
-                                                 tau_dev.data());
+        materials[material]->kirchhoff_deviators(
+          n, F.data(), old_of, now_of, tau_dev.data());
       n = 0;
     };
     try
