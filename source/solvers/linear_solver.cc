@@ -12,16 +12,15 @@
 
 #include <densify/solvers/linear_solver.h>
 
-#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Import.h>
-#include <Epetra_LinearProblem.h>
 #include <Epetra_Map.h>
 #include <Epetra_MpiComm.h>
 #include <Teuchos_ParameterList.hpp>
 #include <dmumps_c.h>
 #include <ml_MultiLevelPreconditioner.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -31,7 +30,7 @@ namespace densify
 {
   namespace
   {
-    /// Throw the error of a failed MUMPS @p phase (Amesos or MUMPS code).
+    /// Throw the error of a failed MUMPS @p phase (MUMPS's error code).
     void
     check_mumps(const int error, const char *phase)
     {
@@ -43,185 +42,39 @@ namespace densify
           "held (Tools, Particles/Hold poles on axis)");
     }
 
-    /**
-     * A copy of @p A without the entries that are exactly zero. The tangent's
-     * pattern reserves the couplings of every contact candidate (the cells
-     * of all facets within a margin of each other, kept while the pattern
-     * lasts), most of which carry no value; MUMPS orders and factorizes the
-     * structure it is given, so each reserved pair of cells would join the
-     * two particles' fronts as if they were in contact.
-     */
-    std::unique_ptr<Epetra_CrsMatrix>
-    without_zeros(const Epetra_CrsMatrix &A)
-    {
-      const int        n_rows = A.NumMyRows();
-      std::vector<int> counts(n_rows, 0);
-      for (int i = 0; i < n_rows; ++i)
-        {
-          int     length;
-          double *values;
-          int    *columns;
-          A.ExtractMyRowView(i, length, values, columns);
-          for (int k = 0; k < length; ++k)
-            counts[i] += (values[k] != 0.);
-        }
-      auto B = std::make_unique<Epetra_CrsMatrix>(
-        Copy, A.RowMap(), A.ColMap(), counts.data(), true);
-      std::vector<int>    kept_columns;
-      std::vector<double> kept_values;
-      for (int i = 0; i < n_rows; ++i)
-        {
-          int     length;
-          double *values;
-          int    *columns;
-          A.ExtractMyRowView(i, length, values, columns);
-          kept_columns.clear();
-          kept_values.clear();
-          for (int k = 0; k < length; ++k)
-            if (values[k] != 0.)
-              {
-                kept_columns.push_back(columns[k]);
-                kept_values.push_back(values[k]);
-              }
-          B->InsertMyValues(i,
-                            kept_columns.size(),
-                            kept_values.data(),
-                            kept_columns.data());
-        }
-      B->FillComplete(A.DomainMap(), A.RangeMap());
-      return B;
-    }
   } // namespace
 
 
 
   /**
-   * The MUMPS factors of one matrix, and solves with them (the factors stay
-   * valid after the matrix's values change). Either MUMPS on all ranks
-   * through Amesos_Mumps, or (@p on_one_rank) sequential MUMPS on rank 0 with
-   * the matrix and the right-hand sides gathered there: MUMPS on several
-   * ranks schedules its work asynchronously, so its round-off, and with it a
-   * run's result, changes from one run to the next; on one rank it does not.
+   * The MUMPS factors of the latest matrix, and solves with them. Either
+   * sequential MUMPS on rank 0 with the matrix and the right-hand sides
+   * gathered there (@p on_one_rank, and always on one rank), or MUMPS on all
+   * ranks, each giving its own rows: MUMPS on several ranks schedules its
+   * work asynchronously, so its round-off, and with it a run's result,
+   * changes from one run to the next; on one rank it does not.
+   *
+   * Only the nonzero entries go to MUMPS: the tangent's pattern reserves the
+   * couplings of every contact candidate (the cells of all facets within a
+   * margin of each other, kept while the pattern lasts), most of which carry
+   * no value, and MUMPS orders and factorizes the structure it is given, so
+   * each reserved pair of cells would join the two particles' fronts as if
+   * they were in contact.
+   *
+   * MUMPS's analysis (fill-reducing order, symbolic factors) is kept for the
+   * next matrix whose nonzero entries all lie in the analysed pattern: then
+   * only the numerical factorization runs, with the pattern's other entries
+   * as zeros. A matrix with an entry outside it is analysed on the union of
+   * both patterns (a contact that opens and closes again keeps its place),
+   * or on its own nonzeros once the union would hold more than
+   * max_pattern_growth times as many entries.
    */
   class MumpsFactorization
   {
   public:
-    /// Analyse and factorize @p matrix, which must stay alive (its maps are
-    /// used by solve()) while this object is used.
-    MumpsFactorization(const TrilinosWrappers::SparseMatrix &matrix,
-                       const bool                            on_one_rank)
-    {
-      const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
-      if (!on_one_rank || A.Comm().NumProc() == 1)
-        {
-          nonzeros = without_zeros(A);
-          problem.SetOperator(nonzeros.get());
-          solver = std::make_unique<Amesos_Mumps>(problem);
-          Timer timer;
-          check_mumps(solver->SymbolicFactorization(), "analysis");
-          analysis_seconds = timer.wall_time();
-          timer.restart();
-          check_mumps(solver->NumericFactorization(), "factorization");
-          factorization_seconds = timer.wall_time();
-          return;
-        }
-      const bool root = A.Comm().MyPID() == 0;
-      const int  n    = A.NumGlobalRows();
-      root_map = std::make_unique<Epetra_Map>(n, root ? n : 0, 0, A.Comm());
-      gather   = std::make_unique<Epetra_Import>(*root_map, A.RowMap());
-      scatter  = std::make_unique<Epetra_Import>(A.RowMap(), *root_map);
-      Epetra_CrsMatrix gathered(Copy, *root_map, 0);
-      gathered.Import(A, *gather, Insert);
-      gathered.FillComplete();
-
-      int error = 0;
-      if (root)
-        {
-          // the triplets, 1-based, of the whole matrix
-          for (int i = 0; i < gathered.NumMyRows(); ++i)
-            {
-              int     length;
-              double *values;
-              int    *columns;
-              gathered.ExtractMyRowView(i, length, values, columns);
-              for (int k = 0; k < length; ++k)
-                if (values[k] != 0.) // see without_zeros()
-                  {
-                    rows.push_back(gathered.GRID(i) + 1);
-                    cols.push_back(gathered.GCID(columns[k]) + 1);
-                    entries.push_back(values[k]);
-                  }
-            }
-          mumps.comm_fortran = MPI_Comm_c2f(MPI_COMM_SELF);
-          mumps.par          = 1;
-          mumps.sym          = 0;
-          mumps.job          = -1;
-          dmumps_c(&mumps);
-          error = mumps.infog[0];
-          if (error >= 0)
-            {
-              initialised = true;
-              // no printing; MUMPS chooses ordering and scaling, as Amesos
-              mumps.icntl[0]  = -1;
-              mumps.icntl[1]  = -1;
-              mumps.icntl[2]  = -1;
-              mumps.icntl[3]  = 0;
-              mumps.icntl[13] = 20;
-              mumps.n         = n;
-              mumps.nnz       = rows.size();
-              mumps.irn       = rows.data();
-              mumps.jcn       = cols.data();
-              mumps.a         = entries.data();
-              for (const int job : {1, 2})
-                if (error >= 0)
-                  {
-                    Timer timer;
-                    mumps.job = job;
-                    dmumps_c(&mumps);
-                    error = mumps.infog[0];
-                    (job == 1 ? analysis_seconds : factorization_seconds) =
-                      timer.wall_time();
-                  }
-            }
-        }
-      // every rank throws, or none
-      error = std::min(dealii::Utilities::MPI::min(error, comm(A)), 0);
-      check_mumps(error, "factorization (on rank 0)");
-    }
-
-    /// MUMPS's statistics of the factorization (INFOG(9), INFOG(11),
-    /// RINFOG(3)) and rank 0's wall times of its analysis and numerical
-    /// factorization, the same on all ranks (collective).
-    std::string
-    statistics() const
-    {
-      const Epetra_Comm &comm = problem.GetOperator() ?
-                                  problem.GetOperator()->Comm() :
-                                  root_map->Comm();
-      // factor entries (negative: millions), largest front, flops, the
-      // wall times of analysis and factorization (on rank 0)
-      double info[5] = {0., 0., 0., analysis_seconds, factorization_seconds};
-      if (solver)
-        {
-          info[0] = solver->GetINFOG()[8];
-          info[1] = solver->GetINFOG()[10];
-          info[2] = solver->GetRINFOG()[2];
-        }
-      else if (initialised)
-        {
-          info[0] = mumps.infog[8];
-          info[1] = mumps.infog[10];
-          info[2] = mumps.rinfog[2];
-        }
-      comm.Broadcast(info, 5, 0);
-      const double       entries = info[0] < 0 ? -1e6 * info[0] : info[0];
-      std::ostringstream out;
-      out << std::setprecision(3) << info[2] / 1e9 << " GFlop, "
-          << entries / 1e6 << " M factor entries, largest front "
-          << static_cast<long>(info[1]) << "; analysis " << info[3]
-          << " s, factorization " << info[4] << " s";
-      return out.str();
-    }
+    explicit MumpsFactorization(const bool on_one_rank)
+      : on_one_rank(on_one_rank)
+    {}
 
     ~MumpsFactorization()
     {
@@ -232,19 +85,100 @@ namespace densify
         }
     }
 
-    /// x = A^{-1} b with the factors.
+    /// Factorize @p matrix (collective).
+    void
+    factorize(const TrilinosWrappers::SparseMatrix &matrix)
+    {
+      const Epetra_CrsMatrix &A    = matrix.trilinos_matrix();
+      const MPI_Comm          comm = communicator(A);
+      const bool              root = A.Comm().MyPID() == 0;
+      const bool sequential        = on_one_rank || A.Comm().NumProc() == 1;
+      if (!row_map || !row_map->SameAs(A.RowMap()))
+        {
+          const int n = A.NumGlobalRows();
+          row_map     = std::make_unique<Epetra_Map>(A.RowMap());
+          root_map = std::make_unique<Epetra_Map>(n, root ? n : 0, 0, A.Comm());
+          gather   = std::make_unique<Epetra_Import>(*root_map, A.RowMap());
+          scatter  = std::make_unique<Epetra_Import>(A.RowMap(), *root_map);
+          pattern_start.clear();
+        }
+      // the rows MUMPS gets from this rank: all on rank 0, or its own
+      std::unique_ptr<Epetra_CrsMatrix> gathered;
+      if (sequential)
+        {
+          gathered = std::make_unique<Epetra_CrsMatrix>(Copy, *root_map, 0);
+          gathered->Import(A, *gather, Insert);
+          gathered->FillComplete();
+        }
+      const bool takes_part = !sequential || root;
+      if (takes_part)
+        read_nonzeros(sequential ? *gathered : A);
+
+      int error = 0;
+      if (takes_part && !initialised)
+        error = initialise(sequential ? MPI_COMM_SELF : comm,
+                           A.NumGlobalRows(),
+                           !sequential);
+      bool reuse = takes_part && fits_analysed_pattern();
+      if (!sequential)
+        reuse = Utilities::MPI::min(static_cast<int>(reuse), comm) == 1;
+      if (takes_part && error == 0)
+        {
+          error = reuse ? 0 : analyse();
+          if (reuse)
+            analysis_seconds = -1.;
+          if (error == 0)
+            error = numerical_factorization();
+          // e.g. more delayed pivots than the kept analysis made room for:
+          // a new analysis of the same pattern with these values (MUMPS's
+          // error code is the same on all its ranks)
+          if (error < 0 && reuse)
+            {
+              error = analyse();
+              if (error == 0)
+                error = numerical_factorization();
+            }
+        }
+      // every rank throws, or none
+      error = std::min(Utilities::MPI::min(error, comm), 0);
+      check_mumps(error, "factorization");
+    }
+
+    /// MUMPS's statistics of the factorization (INFOG(9), INFOG(11),
+    /// RINFOG(3)) and rank 0's wall times of its analysis and numerical
+    /// factorization, the same on all ranks (collective).
+    std::string
+    statistics() const
+    {
+      // factor entries (negative: millions), largest front, flops, the
+      // wall times of analysis and factorization (on rank 0)
+      double info[5] = {0., 0., 0., analysis_seconds, factorization_seconds};
+      if (initialised)
+        {
+          info[0] = mumps.infog[8];
+          info[1] = mumps.infog[10];
+          info[2] = mumps.rinfog[2];
+        }
+      root_map->Comm().Broadcast(info, 5, 0);
+      const double       entries = info[0] < 0 ? -1e6 * info[0] : info[0];
+      std::ostringstream out;
+      out << std::setprecision(3) << info[2] / 1e9 << " GFlop, "
+          << entries / 1e6 << " M factor entries, largest front "
+          << static_cast<long>(info[1]) << "; analysis ";
+      if (info[3] >= 0.)
+        out << info[3] << " s";
+      else
+        out << "reused";
+      out << ", factorization " << info[4] << " s";
+      return out.str();
+    }
+
+    /// x = A^{-1} b with the factors (collective).
     void
     solve(TrilinosWrappers::MPI::Vector       &x,
           const TrilinosWrappers::MPI::Vector &b)
     {
-      if (solver)
-        {
-          problem.SetLHS(&x.trilinos_vector());
-          problem.SetRHS(
-            const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
-          check_mumps(solver->Solve(), "solve");
-          return;
-        }
+      // right-hand side and solution on rank 0, MUMPS's host
       Epetra_Vector on_root(*root_map);
       on_root.Import(b.trilinos_vector(), *gather, Insert);
       int error = 0;
@@ -255,36 +189,211 @@ namespace densify
           dmumps_c(&mumps);
           error = mumps.infog[0];
         }
-      error =
-        std::min(dealii::Utilities::MPI::min(error, x.get_mpi_communicator()),
-                 0);
-      check_mumps(error, "solve (on rank 0)");
+      error = std::min(Utilities::MPI::min(error, x.get_mpi_communicator()), 0);
+      check_mumps(error, "solve");
       x.trilinos_vector().Import(on_root, *scatter, Insert);
     }
 
   private:
     /// The MPI communicator of @p A.
     static MPI_Comm
-    comm(const Epetra_CrsMatrix &A)
+    communicator(const Epetra_CrsMatrix &A)
     {
       return dynamic_cast<const Epetra_MpiComm &>(A.Comm()).Comm();
     }
 
-    /// MUMPS on all ranks, given the matrix without its zero entries.
-    std::unique_ptr<Epetra_CrsMatrix> nonzeros;
-    Epetra_LinearProblem              problem;
-    std::unique_ptr<Amesos_Mumps>     solver;
+    /// Start MUMPS on @p comm for a matrix of @p n rows, given by rows on
+    /// each rank (@p distributed) or all on the host. Returns MUMPS's error.
+    int
+    initialise(const MPI_Comm comm, const int n, const bool distributed)
+    {
+      mumps.comm_fortran = MPI_Comm_c2f(comm);
+      mumps.par          = 1;
+      mumps.sym          = 0;
+      mumps.job          = -1;
+      dmumps_c(&mumps);
+      if (mumps.infog[0] < 0)
+        return mumps.infog[0];
+      initialised = true;
+      // no printing; MUMPS chooses ordering and scaling
+      mumps.icntl[0]  = -1;
+      mumps.icntl[1]  = -1;
+      mumps.icntl[2]  = -1;
+      mumps.icntl[3]  = 0;
+      mumps.icntl[13] = 20;
+      mumps.icntl[17] = distributed ? 3 : 0;
+      mumps.n         = n;
+      return 0;
+    }
 
-    /// Sequential MUMPS on rank 0: all rows there, the maps between the
-    /// distributed vectors and those, and MUMPS's data (rank 0 only).
-    std::unique_ptr<Epetra_Map>    root_map;
+    /// The nonzero entries of @p M's rows, row by row, 1-based columns
+    /// ascending.
+    void
+    read_nonzeros(const Epetra_CrsMatrix &M)
+    {
+      const int n = M.NumMyRows();
+      new_rows.resize(n);
+      new_start.assign(n + 1, 0);
+      new_columns.clear();
+      new_values.clear();
+      std::vector<std::pair<int, double>> row;
+      for (int i = 0; i < n; ++i)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          M.ExtractMyRowView(i, length, values, columns);
+          row.clear();
+          for (int k = 0; k < length; ++k)
+            if (values[k] != 0.)
+              row.emplace_back(M.GCID(columns[k]) + 1, values[k]);
+          std::sort(row.begin(), row.end());
+          for (const auto &[column, value] : row)
+            {
+              new_columns.push_back(column);
+              new_values.push_back(value);
+            }
+          new_rows[i]      = M.GRID(i) + 1;
+          new_start[i + 1] = new_columns.size();
+        }
+    }
+
+    /**
+     * Whether every nonzero entry read lies in the analysed pattern (of the
+     * same rows); if so, entries gets their values in the pattern's order,
+     * with zeros for the pattern's other entries.
+     */
+    bool
+    fits_analysed_pattern()
+    {
+      if (pattern_rows != new_rows)
+        return false;
+      entries.assign(columns.size(), 0.);
+      for (std::size_t i = 0; i < new_rows.size(); ++i)
+        {
+          unsigned int p = pattern_start[i];
+          for (unsigned int k = new_start[i]; k < new_start[i + 1]; ++k)
+            {
+              while (p < pattern_start[i + 1] && columns[p] < new_columns[k])
+                ++p;
+              if (p == pattern_start[i + 1] || columns[p] != new_columns[k])
+                return false;
+              entries[p] = new_values[k];
+            }
+        }
+      return true;
+    }
+
+    /**
+     * MUMPS's analysis of the union of the analysed pattern and the nonzero
+     * entries read, or of the latter alone when the union would hold more
+     * than max_pattern_growth times as many entries; entries gets the values
+     * in that pattern's order. Returns MUMPS's error.
+     */
+    int
+    analyse()
+    {
+      const std::size_t         n = new_rows.size();
+      std::vector<unsigned int> start(n + 1, 0);
+      std::vector<int>          merged;
+      std::vector<double>       values;
+      const bool                union_possible = pattern_rows == new_rows;
+      for (std::size_t i = 0; i < n && union_possible; ++i)
+        {
+          unsigned int p = pattern_start[i], k = new_start[i];
+          while (p < pattern_start[i + 1] || k < new_start[i + 1])
+            if (k == new_start[i + 1] ||
+                (p < pattern_start[i + 1] && columns[p] < new_columns[k]))
+              {
+                merged.push_back(columns[p++]);
+                values.push_back(0.);
+              }
+            else
+              {
+                if (p < pattern_start[i + 1] && columns[p] == new_columns[k])
+                  ++p;
+                merged.push_back(new_columns[k]);
+                values.push_back(new_values[k++]);
+              }
+          start[i + 1] = merged.size();
+        }
+      if (union_possible &&
+          merged.size() <= max_pattern_growth * new_columns.size())
+        {
+          pattern_start.swap(start);
+          columns.swap(merged);
+          entries.swap(values);
+        }
+      else
+        {
+          pattern_rows  = new_rows;
+          pattern_start = new_start;
+          columns       = new_columns;
+          entries       = new_values;
+        }
+      rows.resize(columns.size());
+      for (std::size_t i = 0; i < n; ++i)
+        std::fill(rows.begin() + pattern_start[i],
+                  rows.begin() + pattern_start[i + 1],
+                  pattern_rows[i]);
+
+      Timer timer;
+      if (mumps.icntl[17] == 3)
+        {
+          mumps.nnz_loc = rows.size();
+          mumps.irn_loc = rows.data();
+          mumps.jcn_loc = columns.data();
+          mumps.a_loc   = entries.data();
+        }
+      else
+        {
+          mumps.nnz = rows.size();
+          mumps.irn = rows.data();
+          mumps.jcn = columns.data();
+          mumps.a   = entries.data();
+        }
+      mumps.job = 1;
+      dmumps_c(&mumps);
+      analysis_seconds = timer.wall_time();
+      return mumps.infog[0] < 0 ? mumps.infog[0] : 0;
+    }
+
+    /// MUMPS's numerical factorization of entries. Returns MUMPS's error.
+    int
+    numerical_factorization()
+    {
+      Timer timer;
+      mumps.job = 2;
+      dmumps_c(&mumps);
+      factorization_seconds = timer.wall_time();
+      return mumps.infog[0] < 0 ? mumps.infog[0] : 0;
+    }
+
+    /// The analysed pattern may hold at most this many times the nonzero
+    /// entries of the matrix it is used for.
+    static constexpr double max_pattern_growth = 1.05;
+
+    /// Whether MUMPS runs on rank 0 alone.
+    const bool on_one_rank;
+
+    /// The distributed rows, all rows on rank 0, and the maps between them.
+    std::unique_ptr<Epetra_Map>    row_map, root_map;
     std::unique_ptr<Epetra_Import> gather, scatter;
-    std::vector<int>               rows, cols;
-    std::vector<double>            entries;
-    DMUMPS_STRUC_C                 mumps{};
-    bool                           initialised = false;
 
-    /// Wall times of MUMPS's analysis and numerical factorization (s).
+    /// The analysed pattern of the rows this rank gives MUMPS (1-based rows
+    /// and the start of each in the entries, 1-based row and column of each
+    /// entry) with the latest matrix's values; and that matrix's nonzero
+    /// entries in the same form.
+    std::vector<int>          pattern_rows, new_rows;
+    std::vector<unsigned int> pattern_start, new_start;
+    std::vector<int>          rows, columns, new_columns;
+    std::vector<double>       entries, new_values;
+
+    DMUMPS_STRUC_C mumps{};
+    bool           initialised = false;
+
+    /// Wall times of MUMPS's latest analysis (-1 if the factorization
+    /// reused an earlier one) and numerical factorization (s).
     double analysis_seconds = 0., factorization_seconds = 0.;
   };
 
@@ -334,7 +443,8 @@ namespace densify
   LinearSolver::rebuild_preconditioner()
   {
     amg.reset();
-    factorization.reset();
+    // the analysis of the factorization stays for the new matrix's pattern
+    factors_current = false;
   }
 
 
@@ -542,7 +652,7 @@ namespace densify
     const TrilinosWrappers::MPI::Vector  &b,
     SolverControl                        &control)
   {
-    if (factorization)
+    if (factors_current)
       {
         // the old factors as a right preconditioner: the residual GMRES
         // measures is the true one
@@ -584,12 +694,10 @@ namespace densify
   void
   LinearSolver::factorize(const TrilinosWrappers::SparseMatrix &matrix)
   {
-    // a new analysis every time, as deal.II's SolverDirect does: MUMPS picks
-    // its pivot order and scaling from the values (keeping the analysis of
-    // the first matrix of a pattern was tried; seven_spheres.mpirun=2 then
-    // failed twice in the parallel ctest, and its gain was not measurable)
-    factorization.reset();
-    factorization = std::make_unique<MumpsFactorization>(matrix, reproducible);
+    if (!factorization)
+      factorization = std::make_unique<MumpsFactorization>(reproducible);
+    factorization->factorize(matrix);
+    factors_current = true;
     ++n_factorized;
   }
 

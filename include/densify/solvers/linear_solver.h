@@ -44,8 +44,10 @@ namespace densify
    * through ML's parameter list ("null space: type" = "pre-computed"), since
    * deal.II 9.4 has no DoFTools::extract_rigid_body_modes (K symmetric
    * positive definite). "gmres-amg": GMRES with the same AMG, for
-   * nonsymmetric tangents. "direct": MUMPS through Amesos. "gmres-lu": GMRES
-   * preconditioned by the MUMPS factors of an earlier tangent.
+   * nonsymmetric tangents. "direct": MUMPS (sequential on rank 0 with
+   * @p reproducible or on one rank, else on all ranks through Amesos).
+   * "gmres-lu": GMRES preconditioned by the MUMPS factors of an earlier
+   * tangent.
    */
   class LinearSolver
   {
@@ -70,8 +72,9 @@ namespace densify
     /// Out of line: MumpsFactorization is complete only there.
     ~LinearSolver();
 
-    /// Build the AMG hierarchy (or the factorization of gmres-lu) anew at
-    /// the next solve; needed whenever the matrix is reinitialised.
+    /// Build the AMG hierarchy (or the factors of gmres-lu; MUMPS's analysis
+    /// is kept where it holds the new pattern) anew at the next solve;
+    /// needed whenever the matrix is reinitialised.
     void
     rebuild_preconditioner();
 
@@ -135,7 +138,8 @@ namespace densify
                              const TrilinosWrappers::MPI::Vector  &b,
                              SolverControl                        &control);
 
-    /// Analysis and numerical factorization of @p matrix.
+    /// Numerical factorization of @p matrix, after MUMPS's analysis of its
+    /// pattern unless an earlier analysis holds it.
     void
     factorize(const TrilinosWrappers::SparseMatrix &matrix);
 
@@ -160,6 +164,9 @@ namespace densify
     /// control, and the number of factorizations.
     std::unique_ptr<MumpsFactorization> factorization;
     unsigned int                        n_factorized = 0;
+    /// Whether the factors are those of a tangent of the current matrix
+    /// pattern (gmres-lu uses them for GMRES only then).
+    bool factors_current = false;
     /// gmres-lu: GMRES iterations beyond which the tangent is factorized
     /// anew.
     static constexpr unsigned int max_reuse_iterations = 20;
