@@ -25,6 +25,7 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace densify
 {
@@ -102,17 +103,12 @@ namespace densify
           scatter  = std::make_unique<Epetra_Import>(A.RowMap(), *root_map);
           pattern_start.clear();
         }
-      // the rows MUMPS gets from this rank: all on rank 0, or its own
-      std::unique_ptr<Epetra_CrsMatrix> gathered;
-      if (sequential)
-        {
-          gathered = std::make_unique<Epetra_CrsMatrix>(Copy, *root_map, 0);
-          gathered->Import(A, *gather, Insert);
-          gathered->FillComplete();
-        }
+      // the nonzeros of this rank's rows, for sequential MUMPS gathered on
+      // rank 0 (the order of the rows does not matter to MUMPS)
+      read_nonzeros(A);
+      if (sequential && A.Comm().NumProc() > 1)
+        gather_nonzeros(comm);
       const bool takes_part = !sequential || root;
-      if (takes_part)
-        read_nonzeros(sequential ? *gathered : A);
 
       int error = 0;
       if (takes_part && !initialised)
@@ -226,8 +222,8 @@ namespace densify
       return 0;
     }
 
-    /// The nonzero entries of @p M's rows, row by row, 1-based columns
-    /// ascending.
+    /// The nonzero entries of @p M's rows on this rank, row by row, 1-based
+    /// columns ascending.
     void
     read_nonzeros(const Epetra_CrsMatrix &M)
     {
@@ -256,6 +252,54 @@ namespace densify
           new_rows[i]      = M.GRID(i) + 1;
           new_start[i + 1] = new_columns.size();
         }
+    }
+
+    /// Rank 0: the nonzeros read on all ranks, theirs after its own.
+    void
+    gather_nonzeros(const MPI_Comm comm)
+    {
+      const int        n_ranks = Utilities::MPI::n_mpi_processes(comm);
+      const int        root    = Utilities::MPI::this_mpi_process(comm) == 0;
+      std::vector<int> row_lengths(new_rows.size());
+      for (std::size_t i = 0; i < new_rows.size(); ++i)
+        row_lengths[i] = new_start[i + 1] - new_start[i];
+      // each rank's number of rows and of entries
+      const int        counts[2] = {static_cast<int>(new_rows.size()),
+                                    static_cast<int>(new_columns.size())};
+      std::vector<int> all_counts(root ? 2 * n_ranks : 0);
+      MPI_Gather(counts, 2, MPI_INT, all_counts.data(), 2, MPI_INT, 0, comm);
+      std::vector<int> sizes[2], offsets[2];
+      for (unsigned int c = 0; c < 2 && root; ++c)
+        for (int r = 0; r < n_ranks; ++r)
+          {
+            offsets[c].push_back(r == 0 ? 0 :
+                                          offsets[c].back() + sizes[c].back());
+            sizes[c].push_back(all_counts[2 * r + c]);
+          }
+      const auto collect = [&](auto &local, const unsigned int c) {
+        using Vector = std::decay_t<decltype(local)>;
+        const MPI_Datatype type =
+          std::is_same_v<typename Vector::value_type, int> ? MPI_INT :
+                                                             MPI_DOUBLE;
+        Vector all(root ? offsets[c].back() + sizes[c].back() : 0);
+        MPI_Gatherv(local.data(),
+                    local.size(),
+                    type,
+                    all.data(),
+                    sizes[c].data(),
+                    offsets[c].data(),
+                    type,
+                    0,
+                    comm);
+        local.swap(all);
+      };
+      collect(new_rows, 0);
+      collect(row_lengths, 0);
+      collect(new_columns, 1);
+      collect(new_values, 1);
+      new_start.assign(new_rows.size() + 1, 0);
+      for (std::size_t i = 0; i < new_rows.size(); ++i)
+        new_start[i + 1] = new_start[i] + row_lengths[i];
     }
 
     /**
