@@ -1,7 +1,7 @@
 #!/bin/bash
-# What accuracy costs in time (issue "Show what accuracy costs in time";
-# doc/accuracy.md): runs a grid of settings (mesh, element, load steps,
-# Newton tolerance, contact penalty, friction law, method) on the scenes
+# What accuracy costs in time (doc/accuracy.md): runs a grid of settings
+# (mesh, element, load steps, Newton tolerance, contact penalty, friction
+# law, method) on the scenes
 # named, one after the other on 1 rank, and writes one CSV row per run: the
 # settings, wall time and core-seconds, Newton iterations, steps and
 # cut-backs, and the errors against the finest run of each scene (the first

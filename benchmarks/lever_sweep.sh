@@ -3,7 +3,7 @@
 # costs: runs one scene to its end once per value of the parameter and prints
 # wall time, Newton iterations, cut-backs, augmentations, the largest
 # penetration, the final relative density, punch forces and particle volume
-# change, so that accuracy can be set against time (mission item 1).
+# change, so that accuracy can be set against time.
 # Usage (from the source root):
 #   bash benchmarks/lever_sweep.sh SCENE.prm "Subsection/Name" VALUE... [-- --set ...]
 # e.g.

@@ -1,5 +1,5 @@
 #!/bin/bash
-# The locking scene of issue 3: a tin sphere (J2, perfectly plastic, finite
+# Volumetric locking of P1: a tin sphere (J2, perfectly plastic, finite
 # strain) flattened by 30 % (0.75 mm) between frictionless plates, with P1 +
 # nodal averaging, plain P1 and P2 on pole-refined meshes. Prints the final
 # plate force of each. Slow (minutes each) while finite-strain J2 under

@@ -1,7 +1,7 @@
 #!/bin/bash
 # Speed of one scene on 1 and 2 MPI ranks: wall time, time per step, Newton
 # and linear iterations per step, peak memory per rank and the largest
-# sections of the timer table (from log.txt). Issue 5's speed benchmark.
+# sections of the timer table (from log.txt).
 # Usage (from the source root):
 #   bash benchmarks/scene_speed.sh [scene.prm] [--set "..."]... [--stop-after N]
 # Default scene: prm/seven_spheres_sn.prm. Needs build/densify (or the

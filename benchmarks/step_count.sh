@@ -1,5 +1,5 @@
 #!/bin/bash
-# What the number of load steps buys and costs (mission item 1): the light
+# What the number of load steps buys and costs in accuracy and time: the light
 # paper scene to its end with several step counts, through lever_sweep.sh
 # (wall time, Newton iterations, cut-backs, final density, forces, volume).
 # Usage (from the source root):
