@@ -45,8 +45,8 @@ namespace densify
    * deal.II 9.4 has no DoFTools::extract_rigid_body_modes (K symmetric
    * positive definite). "gmres-amg": GMRES with the same AMG, for
    * nonsymmetric tangents. "direct": MUMPS (sequential on rank 0 with
-   * @p reproducible or on one rank, else on all ranks through Amesos).
-   * "gmres-lu": GMRES preconditioned by the MUMPS factors of an earlier
+   * @p reproducible or on one rank, else on all ranks, each giving its own
+   * rows). "gmres-lu": GMRES preconditioned by the MUMPS factors of an earlier
    * tangent.
    */
   class LinearSolver
