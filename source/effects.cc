@@ -110,11 +110,11 @@ namespace densify
     const std::string &solver  = prm.solver.linear_solver;
     const bool         cg      = solver == "cg-amg";
     const std::string &tangent = prm.contact.friction_tangent;
-    if (tangent == "consistent" && cg)
+    if ((tangent == "consistent" || tangent == "secant-start") && cg)
       throw std::runtime_error(
-        "Contact/Friction tangent = consistent gives a nonsymmetric tangent "
-        "that CG cannot solve: set Solver/Linear solver = gmres-amg (or "
-        "direct)");
+        "Contact/Friction tangent = " + tangent +
+        " gives a nonsymmetric tangent that CG cannot solve: set "
+        "Solver/Linear solver = gmres-amg (or direct)");
     const std::string &geometric = prm.contact.geometric_tangent;
     if (geometric == "true" && cg)
       throw std::runtime_error(
@@ -123,7 +123,10 @@ namespace densify
         "direct, or Contact/Geometric tangent = auto");
     e.consistent_friction_tangent =
       e.any_friction() &&
-      (tangent == "consistent" || (tangent == "auto" && !cg));
+      (tangent == "consistent" || tangent == "secant-start" ||
+       (tangent == "auto" && !cg));
+    e.friction_secant_start =
+      e.consistent_friction_tangent && tangent != "consistent";
     if (solver == "auto")
       e.linear_solver = (e.consistent_friction_tangent ||
                          (e.particle_contact && geometric == "true")) ?

@@ -573,8 +573,13 @@ namespace densify
         "the pressure (CG works; Newton converges only linearly where "
         "points slip); 'consistent': with it (quadratic Newton near slip, "
         "needs Solver/Linear solver = gmres-amg, gmres-lu, direct or auto); "
-        "'auto' (keep it): consistent unless Solver/Linear solver = cg-amg.",
-        Patterns::Selection("auto|symmetric|consistent"));
+        "'secant-start': consistent, but each Newton solve's first "
+        "iterations take the secant stiffness along the slip (where the "
+        "exact tangent has none) until a correction moves no entry by more "
+        "than a hundredth of half the smallest element size, which keeps a pore's slipping, yielding surface from "
+        "huge corrections in dense packings; 'auto' (keep it): secant-start "
+        "unless Solver/Linear solver = cg-amg, then symmetric.",
+        Patterns::Selection("auto|symmetric|consistent|secant-start"));
       prm.add_parameter(
         "Geometric tangent",
         contact.geometric_tangent,

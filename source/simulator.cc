@@ -238,6 +238,7 @@ namespace densify
     // no node moves by more than half the smallest element size in one
     // Newton iteration
     newton_control.step_limit         = 0.5 * h_min;
+    newton_control.secant_start       = effects.friction_secant_start;
     newton_control.verbose            = prm.output.verbose;
     newton_control.continuation       = effects.continuation;
     newton_control.continuation_start = prm.solver.pseudo_mass;

@@ -99,6 +99,17 @@ namespace densify
 
 
 
+  void
+  Simulator::set_secant_tangent(const bool on)
+  {
+    if (tool_contact)
+      tool_contact->set_slip_secant(on);
+    if (particle_contact)
+      particle_contact->set_slip_secant(on);
+  }
+
+
+
   unsigned int
   Simulator::after_update()
   {

@@ -1,6 +1,8 @@
 // The contact law's stiffness against central finite differences of the
 // traction, for Coulomb stick, Coulomb slip and the arctangent law, with the
-// consistent tangent; and the symmetric tangent is symmetric.
+// consistent tangent; the symmetric tangent is symmetric; and the secant
+// start adds the symmetric tangent's stiffness along the slip of Coulomb slip
+// to the consistent tangent, where that has none, and nothing else.
 #include <densify/contact/contact_law.h>
 
 #include "test_utilities.h"
@@ -54,6 +56,25 @@ main()
               lambda, g0 + n * d0, eps, n, t_old, d0, eps, law)
               .stiffness;
           const double asymmetry = (K - transpose(K)).norm() / K.norm();
+          // the secant start (FrictionLaw::slip_secant): the consistent
+          // tangent plus, along the slip of Coulomb slip, the secant
+          // stiffness of the symmetric tangent (where the exact one has
+          // none); the same traction
+          law.consistent           = true;
+          law.slip_secant          = true;
+          const ContactResponse rs = evaluate_contact_law(
+            lambda, g0 + n * d0, eps, n, t_old, d0, eps, law);
+          Tensor<2, 3> expected = r0.stiffness;
+          if (model == FrictionModel::coulomb &&
+              r0.status == ContactStatus::slip)
+            {
+              const Tensor<1, 3> t_hat = r0.traction / r0.traction.norm();
+              expected += (t_hat * K * t_hat) * outer_product(t_hat, t_hat);
+            }
+          const bool secant_start =
+            (rs.traction - r0.traction).norm() == 0. &&
+            rs.pressure == r0.pressure &&
+            (rs.stiffness - expected).norm() <= 1e-14 * K.norm();
           std::cout << (model == FrictionModel::coulomb ? "Coulomb   " :
                                                           "arctangent")
                     << " slip " << std::setw(5) << slip << " history "
@@ -62,7 +83,9 @@ main()
                     << ": consistent tangent vs FD "
                     << testing::yes(error < 1e-6)
                     << ", symmetric tangent symmetric "
-                    << testing::yes(asymmetry < 1e-14) << std::endl;
+                    << testing::yes(asymmetry < 1e-14)
+                    << ", secant start as expected "
+                    << testing::yes(secant_start) << std::endl;
         }
   return testing::all_passed ? 0 : 1;
 }

@@ -78,6 +78,9 @@ namespace densify
     FrictionModel friction_model = FrictionModel::coulomb;
     /// The consistent (nonsymmetric) friction tangent where friction acts.
     bool consistent_friction_tangent = false;
+    /// With it, the secant along the slip in the first iterations of each
+    /// Newton solve (Contact/Friction tangent = secant-start, or auto).
+    bool friction_secant_start = false;
     /// Contact between particles (more than one particle).
     bool particle_contact = false;
     /// The particle contact tangent with the motion of the master facets.

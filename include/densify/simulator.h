@@ -275,6 +275,8 @@ namespace densify
     add_pseudo_mass(const double factor) override;
     void
     begin_solve() override;
+    void
+    set_secant_tangent(const bool on) override;
     unsigned int
     after_update() override;
     bool

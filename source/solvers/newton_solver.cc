@@ -30,6 +30,10 @@ namespace densify
     const double                   tol = control.tolerance;
 
     unsigned int linear_iterations = 0;
+    // the secant start: secant tangents until a correction is small
+    bool secant = control.secant_start;
+    if (secant)
+      problem.set_secant_tangent(true);
     problem.begin_solve();
     NonlinearProblem::Evaluation current =
       problem.assemble(!check_first, margin, check_first);
@@ -118,6 +122,15 @@ namespace densify
         // at finite strain distorting, steps)
         const double max_step = increment.linfty_norm();
         const double limit    = control.step_limit;
+        // the exact tangent from the next assembly on (the line search's
+        // first trial assembles the next iteration's tangent)
+        if (secant && max_step <= control.secant_switch * limit)
+          {
+            secant = false;
+            problem.set_secant_tangent(false);
+            if (control.verbose)
+              out << "      the exact tangent from here" << std::endl;
+          }
         // line search: "residual" backtracks until |R| falls; "energy" looks
         // for the step where phi(s) = R(u + s du).du, the derivative of the
         // incremental energy along du, has fallen to half of |phi(0)|

@@ -38,6 +38,11 @@ namespace densify
     /// Keep the nonsymmetric coupling of the slip traction with the
     /// pressure in the tangent (needs a nonsymmetric linear solver).
     bool consistent = false;
+    /// With #consistent: along the slip direction the secant stiffness
+    /// eps_t mu p / |trial| instead of the exact tangent's none (set for the
+    /// first iterations of a Newton solve, NewtonControl::secant_start). The
+    /// traction is the same either way.
+    bool slip_secant = false;
   };
 
   /// Stick/slip state of a contact point (for output).
@@ -108,7 +113,7 @@ namespace densify
           }
         const Tensor<1, 3> t_hat = trial / norm;
         r.traction               = limit * t_hat;
-        if (friction.consistent)
+        if (friction.consistent && !friction.slip_secant)
           r.stiffness +=
             eps_t * limit / norm * (P - outer_product(t_hat, t_hat));
         else
@@ -200,7 +205,9 @@ namespace densify
             const double       norm  = trial.norm();
             const Tensor<1, 3> t_hat = trial / norm;
             A                        = law.mu * p / norm *
-                (law.consistent ? I - outer_product(t_hat, t_hat) : I);
+                (law.consistent && !law.slip_secant ?
+                   I - outer_product(t_hat, t_hat) :
+                   I);
           }
         terms.dt_ds_committed = A;
         terms.dt_ds           = -eps_t * A;

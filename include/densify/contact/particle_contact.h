@@ -104,6 +104,13 @@ namespace densify
       friction.regularisation = delta;
     }
 
+    /// Set FrictionLaw::slip_secant (the tangent of the next assemblies).
+    void
+    set_slip_secant(const bool on)
+    {
+      friction.slip_secant = on;
+    }
+
     /**
      * Add to the tangent the terms from the motion of the master facet: the
      * rotation of its normal, along which the pressure acts, and the sliding

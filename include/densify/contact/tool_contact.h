@@ -125,6 +125,15 @@ namespace densify
         law.regularisation = delta;
     }
 
+    /// Set FrictionLaw::slip_secant of every tool's law (the tangent of the
+    /// next assemblies).
+    void
+    set_slip_secant(const bool on)
+    {
+      for (FrictionLaw &law : friction_laws)
+        law.slip_secant = on;
+    }
+
     /// Normal force (N) of the tool @p kind on each particle (by index) at
     /// @p solution, on every rank; > 0 where the particle touches the tool.
     std::vector<double>

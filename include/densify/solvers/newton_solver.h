@@ -66,6 +66,19 @@ namespace densify
     {}
 
     /**
+     * From the next assembly on, assemble the tangent with a secant
+     * stiffness where the exact tangent has none (@p on; e.g. along the slip
+     * of Coulomb friction, FrictionLaw::slip_secant), or the exact tangent
+     * again. The residual is the same either way. Called only with
+     * NewtonControl::secant_start.
+     */
+    virtual void
+    set_secant_tangent(const bool on)
+    {
+      (void)on;
+    }
+
+    /**
      * Assemble the residual (and the tangent if @p with_tangent) at the
      * current solution. @p tangent_margin: a predictor for constraints about
      * to become active (tangent only). @p search: refresh what the assembly
@@ -142,6 +155,12 @@ namespace densify
     double linear_tolerance          = 1e-8;
     /// Largest change of any entry of u in one iteration (step limiter).
     double step_limit = std::numeric_limits<double>::max();
+    /// The secant start: each solve assembles its tangents with
+    /// NonlinearProblem::set_secant_tangent(true) until a correction's
+    /// largest entry is at most secant_switch times step_limit, then the
+    /// exact tangent to the end of the solve.
+    bool   secant_start  = false;
+    double secant_switch = 1e-2;
     /// The pseudo-transient continuation: when it is used, and the factor
     /// of the pseudo mass in its first iteration.
     Continuation continuation       = Continuation::off;
@@ -182,6 +201,15 @@ namespace densify
      * reference force, so it vanishes as R does. The residual is never
      * changed, so the converged state solves R(u) = 0 as without the
      * continuation. It gets four times the iterations.
+     *
+     * With NewtonControl::secant_start, the tangents of the first
+     * iterations are secant where the exact one has no stiffness (the slip
+     * of Coulomb friction): there a correction of the exact tangent can move
+     * the surface of a pore, held only by slipping points and plastic flow,
+     * by millimetres, which the line search then cuts to a fraction of a
+     * per cent. Once a correction is small (NewtonControl::secant_switch)
+     * the exact tangent takes over and the last iterations converge
+     * quadratically again.
      *
      * With @p check_first, the first residual is assembled without the
      * tangent, which is assembled only if that residual is not converged: a
