@@ -98,9 +98,21 @@ namespace
     // rotation, and where Newton needs a retry, the path to one of the
     // nearby equilibria of the faceted spheres): its forces are checked
     // within 2 % of the 1-rank run's 2569 N (1 % seen between runs on 2
-    // ranks that differ in round-off only) and not printed
+    // ranks that differ in round-off only) and not printed.
+    // With friction the punch forces are set by equilibrium, but how the
+    // particles share them is not: Coulomb friction admits a range of
+    // equilibria, and the Newton path picks one. The consistent friction
+    // tangent ends at 2904 N, the secant start (the default) at 2921 N with
+    // the punch forces within 0.01 %: checked within 2 % of 2904 N, as the
+    // frictionless case, and printed to stderr
     if (mu > 0)
-      out << std::setprecision(4) << last.particle_contact_force << " N";
+      {
+        std::cerr << "particle contact force with friction: "
+                  << last.particle_contact_force << " N" << std::endl;
+        out << "within 2 % of 2904 N: "
+            << testing::yes(std::abs(last.particle_contact_force - 2904.) <
+                            0.02 * 2904.);
+      }
     else
       out << "within 2 % of 2569 N: "
           << testing::yes(std::abs(last.particle_contact_force - 2569.) <
