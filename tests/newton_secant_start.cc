@@ -28,6 +28,8 @@
 
 #include <densify/solvers/newton_solver.h>
 
+#include "toy_problem.h"
+
 #include <cmath>
 #include <iostream>
 
@@ -37,21 +39,12 @@ namespace
   using namespace densify;
 
   /// The block and the node (entries 0 and 1).
-  class SlippingBlock : public NonlinearProblem
+  class SlippingBlock : public testing::DirectToy<NonlinearProblem>
   {
   public:
     SlippingBlock()
-      : owned(complete_index_set(2))
-    {
-      u.reinit(owned, MPI_COMM_WORLD);
-      r.reinit(owned, MPI_COMM_WORLD);
-      TrilinosWrappers::SparsityPattern sp(owned, MPI_COMM_WORLD);
-      for (unsigned int i = 0; i < 2; ++i)
-        for (unsigned int j = 0; j < 2; ++j)
-          sp.add(i, j);
-      sp.compress();
-      K.reinit(sp);
-    }
+      : DirectToy(2, 1)
+    {}
 
     /// The saturation force, its slip scale, the spring and the pull.
     const double T = 1., delta = 0.1, k = 10., F = 0.5;
@@ -92,34 +85,8 @@ namespace
       return e;
     }
 
-    TrilinosWrappers::MPI::Vector &
-    solution_vector() override
-    {
-      return u;
-    }
-
-    TrilinosWrappers::MPI::Vector &
-    residual_vector() override
-    {
-      return r;
-    }
-
-    unsigned int
-    solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
-                 TrilinosWrappers::MPI::Vector       &du,
-                 const double /*relative_tolerance*/) override
-    {
-      SolverControl                  control(1, 0);
-      TrilinosWrappers::SolverDirect direct(control);
-      direct.solve(K, du, rhs);
-      return 1;
-    }
-
-    bool                           secant   = false;
-    unsigned int                   switches = 0;
-    IndexSet                       owned;
-    TrilinosWrappers::MPI::Vector  u, r;
-    TrilinosWrappers::SparseMatrix K;
+    bool         secant   = false;
+    unsigned int switches = 0;
   };
 } // namespace
 

@@ -32,6 +32,8 @@
 #include <densify/drivers/load_stepper.h>
 #include <densify/solvers/newton_solver.h>
 
+#include "toy_problem.h"
+
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -50,23 +52,14 @@ namespace
   }
 
   /// The spring chain with a stop at x = gap for the last node.
-  class SpringChain : public IncrementalProblem
+  class SpringChain : public testing::DirectToy<IncrementalProblem>
   {
   public:
     SpringChain(const unsigned int n, const double gap)
-      : n(n)
+      : DirectToy(n, 1)
+      , n(n)
       , gap(gap)
-      , owned(complete_index_set(n))
-    {
-      u.reinit(owned, MPI_COMM_WORLD);
-      r.reinit(owned, MPI_COMM_WORLD);
-      TrilinosWrappers::SparsityPattern sp(owned, MPI_COMM_WORLD);
-      for (unsigned int i = 0; i < n; ++i)
-        for (unsigned int j = (i > 0 ? i - 1 : 0); j < std::min(n, i + 2); ++j)
-          sp.add(i, j);
-      sp.compress();
-      K.reinit(sp);
-    }
+    {}
 
     /// Scale of the springs' nonlinearity, and the force F at t = 1.
     const double k = 100., c = 50., F_max = 300.;
@@ -155,29 +148,6 @@ namespace
       return e;
     }
 
-    TrilinosWrappers::MPI::Vector &
-    solution_vector() override
-    {
-      return u;
-    }
-
-    TrilinosWrappers::MPI::Vector &
-    residual_vector() override
-    {
-      return r;
-    }
-
-    unsigned int
-    solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
-                 TrilinosWrappers::MPI::Vector       &du,
-                 const double /*relative_tolerance*/) override
-    {
-      SolverControl                  control(1, 0);
-      TrilinosWrappers::SolverDirect direct(control);
-      direct.solve(K, du, rhs);
-      return 1;
-    }
-
     double
     set_loads(const double t, const double dt) override
     {
@@ -217,13 +187,10 @@ namespace
       ++commits;
     }
 
-    const unsigned int             n;
-    const double                   gap;
-    double                         time    = 0.;
-    unsigned int                   commits = 0;
-    IndexSet                       owned;
-    TrilinosWrappers::MPI::Vector  u, r;
-    TrilinosWrappers::SparseMatrix K;
+    const unsigned int n;
+    const double       gap;
+    double             time    = 0.;
+    unsigned int       commits = 0;
   };
 
   /// The exact free chain: every spring carries the force f, s solves
