@@ -576,8 +576,9 @@ namespace densify
         "'secant-start': consistent, but each Newton solve's first "
         "iterations take the secant stiffness along the slip (where the "
         "exact tangent has none) until a correction moves no entry by more "
-        "than a hundredth of half the smallest element size, which keeps a pore's slipping, yielding surface from "
-        "huge corrections in dense packings; 'auto' (keep it): secant-start "
+        "than a hundredth of half the smallest element size, which keeps a "
+        "pore's slipping, yielding surface from huge corrections in dense "
+        "packings; 'auto' (keep it): secant-start "
         "unless Solver/Linear solver = cg-amg, then symmetric.",
         Patterns::Selection("auto|symmetric|consistent|secant-start"));
       prm.add_parameter(
