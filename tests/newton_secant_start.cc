@@ -18,13 +18,7 @@
 // direction is not the one the solve needs, is measured on the paper's scene
 // (doc/performance.md, "The secant start").
 #include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
-
-#include <deal.II/lac/trilinos_solver.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
-#include <deal.II/lac/trilinos_vector.h>
 
 #include <densify/solvers/newton_solver.h>
 

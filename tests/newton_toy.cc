@@ -21,13 +21,7 @@
 //   LoadStepperControl::max_consistency_solves), so a hold at
 //   the same load takes no Newton iteration and stays there.
 #include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
-
-#include <deal.II/lac/trilinos_solver.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
-#include <deal.II/lac/trilinos_vector.h>
 
 #include <densify/drivers/load_stepper.h>
 #include <densify/solvers/newton_solver.h>
