@@ -647,14 +647,15 @@ namespace densify
               {
                 StepCounts counts;
                 stepper->advance_to(*this, current_time, time, step, counts);
-                s.newton_iterations = counts.newton_iterations;
-                s.linear_iterations = counts.linear_iterations;
-                s.augmentations     = counts.augmentations;
-                s.cutbacks          = counts.cutbacks;
-                s.continuations     = counts.continuations;
-                s.failed_checks     = counts.failed_checks;
-                s.increments        = counts.increments;
-                results             = last_contact;
+                s.newton_iterations        = counts.newton_iterations;
+                s.linear_iterations        = counts.linear_iterations;
+                s.augmentations            = counts.augmentations;
+                s.cutbacks                 = counts.cutbacks;
+                s.continuations            = counts.continuations;
+                s.failed_checks            = counts.failed_checks;
+                s.failed_newton_iterations = counts.failed_newton_iterations;
+                s.increments               = counts.increments;
+                results                    = last_contact;
               }
           }
         catch (const ConvergenceError &e)

@@ -9,6 +9,8 @@
 // - the load stepper reaches the end load through a cut-back after a failed
 //   increment, and its augmentations bring the penetration of the stop
 //   below the tolerance, with the stop's force equal to F - k (1 + c s^2) s;
+// - the iterations of the solves that fail are counted apart from those
+//   of the converged ones (StepCounts::failed_newton_iterations);
 // - after a hold whose load travel is round-off but whose solution still
 //   moved (a relaxation), the next step's predictor does not extrapolate
 //   that move by the ratio of the travels (about 1e14): the step starts
@@ -311,6 +313,38 @@ main(int argc, char **argv)
                      chain.lambda + chain.eps * (chain.u[chain.n - 1] - gap)) -
             stop_force) < 1e-6 * chain.F_max)
       << std::endl;
+  }
+
+  // one Newton iteration a solve cannot reach the full load's equilibrium,
+  // nor those of its two cut-backs: three failed solves of one iteration
+  // each, none converged
+  {
+    SpringChain   chain(8, 1e10);
+    NewtonControl control;
+    control.tolerance      = 1e-12;
+    control.max_iterations = 1;
+    NewtonSolver       newton(control, silent);
+    LoadStepperControl steps;
+    steps.max_cutbacks = 2;
+    LoadStepper stepper(steps, newton, silent);
+    stepper.setup(chain.u);
+    double     t = 0.;
+    StepCounts counts;
+    bool       thrown = false;
+    try
+      {
+        stepper.advance_to(chain, t, 1., 1, counts);
+      }
+    catch (const ConvergenceError &)
+      {
+        thrown = true;
+      }
+    std::cout << "failed solves: the step fails after 2 cut-backs: "
+              << (thrown && counts.cutbacks == 2)
+              << ", their iterations counted apart (3 failed, 0 converged): "
+              << (counts.failed_newton_iterations == 3 &&
+                  counts.newton_iterations == 0)
+              << std::endl;
   }
 
   // a hold: the load drops by 1 % over the second step (a relaxation) while

@@ -91,13 +91,16 @@ namespace densify
             catch (const std::runtime_error &)
               {
                 if (!check)
-                  throw;
+                  {
+                    counts.failed_newton_iterations += last_solve_iterations();
+                    throw;
+                  }
                 // a check that does not converge within its iterations
                 // (points that switch facets back and forth in a dense
                 // packing): the increment keeps the state converged with
                 // the kept facets; its material and contact states are
                 // evaluated again, from the closest facets
-                counts.newton_iterations += newton.residuals().size() - 1;
+                counts.newton_iterations += last_solve_iterations();
                 solution = converged;
                 problem.begin_solve();
                 problem.assemble(false, 0., false);

@@ -153,6 +153,8 @@ namespace densify
               << " increments";
         if (s.continuations > 0)
           out << ", " << s.continuations << " continuation(s)";
+        if (s.failed_newton_iterations > 0)
+          out << ", " << s.failed_newton_iterations << " in failed solves";
         if (s.failed_checks > 0)
           out << ", " << s.failed_checks << " unconverged check(s)";
         out << ")";

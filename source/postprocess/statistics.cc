@@ -48,7 +48,8 @@ namespace densify
            "upper_punch_stress,lower_punch_stress,die_wall_pressure,"
            "radial_axial_ratio,compact_height,compact_diameter,"
            "envelope_density,phase,lower_punch_displacement,"
-           "coordination_number,contact_area_fraction,die_displacement";
+           "coordination_number,contact_area_fraction,die_displacement,"
+           "failed_newton_iterations";
   }
 
 
@@ -116,7 +117,8 @@ namespace densify
         << s.compact_height << ',' << s.compact_diameter << ','
         << s.envelope_density << ',' << s.phase << ','
         << s.lower_punch_displacement << ',' << s.coordination_number << ','
-        << s.contact_area_fraction << ',' << s.die_displacement << '\n';
+        << s.contact_area_fraction << ',' << s.die_displacement << ','
+        << s.failed_newton_iterations << '\n';
     return append_or_roll_back(out, filename, row.str());
   }
 } // namespace densify

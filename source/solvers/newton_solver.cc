@@ -30,6 +30,7 @@ namespace densify
     const double                   tol = control.tolerance;
 
     unsigned int linear_iterations = 0;
+    history.clear();
     // the secant start: secant tangents until a correction is small
     bool secant = control.secant_start;
     if (secant)
@@ -59,7 +60,6 @@ namespace densify
     const unsigned int max_iterations =
       check_first ? std::max(5u, control.max_iterations / 4) :
                     (pseudo_transient ? 4 : 1) * control.max_iterations;
-    history.clear();
     for (unsigned int it = 0; it <= max_iterations; ++it)
       {
         history.push_back(current.residual_norm);

@@ -127,6 +127,10 @@ namespace densify
     /// Consistency solves (IncrementalProblem::start_dependent()) that did
     /// not converge: their increments kept the state converged before.
     unsigned int failed_checks = 0;
+    /// Newton iterations of the solves that did not converge, whose
+    /// increments were retried with the continuation or cut back (not in
+    /// newton_iterations, which counts the converged solves).
+    unsigned int failed_newton_iterations = 0;
   };
 
   /**
@@ -188,6 +192,15 @@ namespace densify
                     const unsigned int  step,
                     const bool          pseudo_transient,
                     StepCounts         &counts);
+
+    /// Newton iterations of the last solve, converged or not.
+    unsigned int
+    last_solve_iterations() const
+    {
+      return newton.residuals().empty() ?
+               0 :
+               static_cast<unsigned int>(newton.residuals().size() - 1);
+    }
 
     const LoadStepperControl control;
     NewtonSolver            &newton;

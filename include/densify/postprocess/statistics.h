@@ -80,6 +80,10 @@ namespace densify
     unsigned int continuations = 0;
     /// Consistency solves that did not converge (the progress line only).
     unsigned int failed_checks = 0;
+    /// Newton iterations of the solves that did not converge (their
+    /// increments retried with the continuation or cut back; not in
+    /// newton_iterations).
+    unsigned int failed_newton_iterations = 0;
     /// The smallest own volume ratio V/V0 of any cell at the end of the
     /// step (smallest_cell_volume()).
     double min_cell_volume_ratio = 1.;
