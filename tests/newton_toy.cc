@@ -11,6 +11,10 @@
 //   below the tolerance, with the stop's force equal to F - k (1 + c s^2) s;
 // - the iterations of the solves that fail are counted apart from those
 //   of the converged ones (StepCounts::failed_newton_iterations);
+// - an increment whose predicted state fails before any Newton iteration
+//   (the last increment extrapolated beyond a state that fails, as a cell
+//   inverted by the extrapolation) is retried from the last converged
+//   state, without a cut-back;
 // - after a hold whose load travel is round-off but whose solution still
 //   moved (a relaxation), the next step's predictor does not extrapolate
 //   that move by the ratio of the travels (about 1e14): the step starts
@@ -34,6 +38,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 namespace
 {
@@ -63,6 +68,9 @@ namespace
     double       eps = 1e5, lambda = 0., saved_lambda = 0.;
     unsigned int fail_above_increment = 0;
     double       increment            = 0.;
+    /// A last node beyond this fails every assembly (as a cell inverted by
+    /// an extrapolated state).
+    double fail_beyond = std::numeric_limits<double>::infinity();
     /// The pulling force against time (default F t) and the travel that
     /// set_loads() reports for an increment (default F dt / k).
     std::function<double(double)>         load;
@@ -103,6 +111,8 @@ namespace
           --fail_above_increment;
           throw std::runtime_error("simulated failure of a long increment");
         }
+      if (u[n - 1] > fail_beyond)
+        throw std::runtime_error("simulated inverted cell");
       r = 0;
       if (with_tangent)
         K = 0;
@@ -290,8 +300,9 @@ main(int argc, char **argv)
     chain.fail_above_increment = 0;
     for (unsigned int step = 1; step <= 4; ++step)
       {
-        // a long increment fails once in the second step
-        chain.fail_above_increment = (step == 2 ? 1 : 0);
+        // a long increment fails twice in the second step: from the
+        // predictor, then from the last converged state; it is cut back
+        chain.fail_above_increment = (step == 2 ? 2 : 0);
         chain.increment            = 0.;
         stepper.advance_to(chain, t, 0.25 * step, step, counts);
       }
@@ -344,6 +355,39 @@ main(int argc, char **argv)
               << ", their iterations counted apart (3 failed, 0 converged): "
               << (counts.failed_newton_iterations == 3 &&
                   counts.newton_iterations == 0)
+              << std::endl;
+  }
+
+  // the load rises to F_max / 2 in the first step and by 1 % of that in
+  // the second, whose reported travel is the first's: the predictor
+  // extrapolates the whole first increment again (the last node from
+  // about 2.2 to 4.4 mm), beyond 3 mm, where every assembly fails
+  {
+    SpringChain chain(8, 1e10);
+    chain.load = [&chain](const double t) {
+      return chain.F_max * (t <= 0.5 ? t : 0.5 + 0.01 * (t - 0.5));
+    };
+    chain.travel = [&chain](const double, const double dt) {
+      return chain.F_max * dt / chain.k;
+    };
+    chain.fail_beyond = 3.;
+    NewtonControl control;
+    control.tolerance = 1e-12;
+    NewtonSolver       newton(control, silent);
+    LoadStepperControl steps;
+    steps.step_length = 0.5;
+    LoadStepper stepper(steps, newton, silent);
+    stepper.setup(chain.u);
+    double     t = 0.;
+    StepCounts counts;
+    for (unsigned int step = 1; step <= 2; ++step)
+      stepper.advance_to(chain, t, 0.5 * step, step, counts);
+    const double s = exact_stretch(chain.load(1.), chain.k, chain.c);
+    std::cout << "a predicted state that fails: retried from the converged "
+                 "state, no cut-back: "
+              << (counts.cutbacks == 0 && counts.increments == 2)
+              << ", ends at the exact chain (error < 1e-10 mm): "
+              << (std::abs(chain.u[chain.n - 1] - chain.n * s) < 1e-10)
               << std::endl;
   }
 

@@ -44,8 +44,10 @@ namespace densify
                                const double        time,
                                const unsigned int  step,
                                const bool          pseudo_transient,
+                               const bool          predict,
                                StepCounts         &counts)
   {
+    predictor_failed    = false;
     const double travel = problem.set_loads(time, time - current_time);
     // predictor: the rigid motion the loads impose, else the last increment
     // extrapolated in proportion to the load's travel, unless this travel is
@@ -55,11 +57,19 @@ namespace densify
     TrilinosWrappers::MPI::Vector      &solution = problem.solution_vector();
     const TrilinosWrappers::MPI::Vector start    = solution;
     TrilinosWrappers::MPI::Vector       rigid(solution);
-    rigid = 0.;
-    if (problem.rigid_predictor(rigid))
-      solution += rigid;
-    else if (last_travel > 0 && travel <= max_extrapolation * last_travel)
-      solution.add(travel / last_travel, last_increment);
+    rigid          = 0.;
+    bool predicted = false;
+    if (predict && problem.rigid_predictor(rigid))
+      {
+        solution += rigid;
+        predicted = true;
+      }
+    else if (predict && last_travel > 0 &&
+             travel <= max_extrapolation * last_travel)
+      {
+        solution.add(travel / last_travel, last_increment);
+        predicted = true;
+      }
 
     double violation = 0.;
     for (unsigned int solve = 0;; ++solve)
@@ -93,6 +103,8 @@ namespace densify
                 if (!check)
                   {
                     counts.failed_newton_iterations += last_solve_iterations();
+                    predictor_failed = predicted && first && solve == 0 &&
+                                       newton.residuals().empty();
                     throw;
                   }
                 // a check that does not converge within its iterations
@@ -173,6 +185,8 @@ namespace densify
     const Continuation continuation      = newton.continuation();
     // the continuation for this increment
     bool pseudo_transient = continuation == Continuation::always;
+    // whether this increment starts from the predictor
+    bool predict = true;
     while (current_time < time - 1e-12 * step_length)
       {
         // the increment that reaches the end of the step ends exactly there:
@@ -189,8 +203,13 @@ namespace densify
         const unsigned int newton_before = counts.newton_iterations;
         try
           {
-            solve_increment(
-              problem, current_time, t_end, step, pseudo_transient, counts);
+            solve_increment(problem,
+                            current_time,
+                            t_end,
+                            step,
+                            pseudo_transient,
+                            predict,
+                            counts);
           }
         catch (const std::runtime_error &e)
           {
@@ -199,6 +218,17 @@ namespace densify
             last_increment            = saved_increment;
             last_travel               = saved_travel;
             problem.restore_state();
+            if (predictor_failed)
+              {
+                // the same increment from the last converged state: the
+                // extrapolated one was no state to start Newton from
+                predict = false;
+                out << "  step " << step
+                    << ": increment retried from the last converged state, "
+                       "without the predictor ("
+                    << one_line(e.what()) << ")" << std::endl;
+                continue;
+              }
             if (continuation == Continuation::fallback && !pseudo_transient)
               {
                 // the same increment again, with the continuation
@@ -228,6 +258,7 @@ namespace densify
                    " (no cut-back tried: Time stepping/Maximum cut-backs = "
                    "0)"));
             dt /= 2;
+            predict = true;
             ++cutbacks_in_a_row;
             ++counts.cutbacks;
             out << "  step " << step << ": increment cut back to "
@@ -241,6 +272,7 @@ namespace densify
         ++counts.increments;
         cutbacks_in_a_row = 0;
         pseudo_transient  = continuation == Continuation::always;
+        predict           = true;
         // easy increments let the increment grow again, up to a full step
         if (counts.newton_iterations - newton_before <=
             control.easy_newton_iterations)

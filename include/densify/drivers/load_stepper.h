@@ -144,9 +144,11 @@ namespace densify
    * state converged before it). A
    * failed increment is rolled back and retried with half the size (at most
    * max_cutbacks times in a row); increments grow again after easy ones.
-   * With Continuation::fallback a failed increment is first retried at the
-   * same size with the pseudo-transient continuation; with
-   * Continuation::always every increment uses it.
+   * An increment whose predicted state fails before any Newton iteration
+   * (the extrapolation inverts a cell) is first retried from the last
+   * converged state. With Continuation::fallback a failed increment is
+   * then retried at the same size with the pseudo-transient continuation;
+   * with Continuation::always every increment uses it.
    */
   class LoadStepper
   {
@@ -182,16 +184,24 @@ namespace densify
     double                        last_travel = 0.;
 
   private:
-    /// One increment to @p time: predictor, then Newton (with the
-    /// pseudo-transient continuation if @p pseudo_transient) inside the
-    /// multiplier updates. Throws std::runtime_error on failure.
+    /// One increment to @p time: predictor (unless @p predict is false),
+    /// then Newton (with the pseudo-transient continuation if
+    /// @p pseudo_transient) inside the multiplier updates. Throws
+    /// std::runtime_error on failure; predictor_failed tells whether the
+    /// predicted state itself failed (before any Newton iteration).
     void
     solve_increment(IncrementalProblem &problem,
                     const double        current_time,
                     const double        time,
                     const unsigned int  step,
                     const bool          pseudo_transient,
+                    const bool          predict,
                     StepCounts         &counts);
+
+    /// Whether the last failed increment failed at its predicted state
+    /// (e.g. a cell inverted by the extrapolation) before any Newton
+    /// iteration.
+    bool predictor_failed = false;
 
     /// Newton iterations of the last solve, converged or not.
     unsigned int
