@@ -495,6 +495,21 @@ namespace densify
 
 
 
+  std::pair<std::vector<unsigned int>, std::vector<double>>
+  Simulator::station_contacts() const
+  {
+    if (!station_recorded)
+      return {contact_partners(), particle_tool_forces(ToolKind::die_wall)};
+    std::vector<double> die_force = station_record.die_force;
+    Utilities::MPI::sum(die_force, comm, die_force);
+    return {particle_contact ?
+              particle_contact->partners_of(station_record.pairs) :
+              std::vector<unsigned int>(particles.size(), 0),
+            die_force};
+  }
+
+
+
   Simulator::ContactResults
   Simulator::contact_results() const
   {
@@ -733,7 +748,7 @@ namespace densify
         s.lower_punch_friction   = contact.friction_force[lower_kind].norm();
         s.slipping_points        = contact.n_slip + results.particles.n_slip;
         update_ghosts();
-        const std::vector<unsigned int> partners = contact_partners();
+        const auto [partners, die_force] = station_contacts();
         for (const unsigned int n : partners)
           s.contact_pairs += n;
         s.contact_pairs /= 2;
@@ -741,8 +756,6 @@ namespace densify
         s.contact_area_fraction =
           2. * results.particles.contact_area /
           particle_surface_area(dof_handler, solution_ghosted);
-        const std::vector<double> die_force =
-          particle_tool_forces(ToolKind::die_wall);
         s.pole_force = pole_springs ? pole_springs->force() : 0.;
         std::vector<ParticleMeasure> measures;
         {

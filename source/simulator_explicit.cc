@@ -241,6 +241,15 @@ namespace densify
     c.values           = &explicit_values;
     c.committed_values = &explicit_committed;
     c.plain_forces     = &explicit_forces;
+    // the pass at the station records its contact pairs and die forces for
+    // the station's statistics
+    if (scene_time == record_time)
+      {
+        station_record.pairs.clear();
+        station_record.die_force.assign(particles.size(), 0.);
+        c.record         = &station_record;
+        station_recorded = true;
+      }
     {
       TimerOutput::Scope ti(timer, "Explicit: internal forces");
       internal = 0.;
@@ -379,7 +388,11 @@ namespace densify
     // half the force's gap to the target per station: the station's force
     // lags its move, and closing all of it overshoots
     plan_punches(time, current_time, 0.5);
+    // the last step's forces are evaluated at the station: they record
+    record_time      = time;
+    station_recorded = false;
     explicit_account = explicit_dynamics->advance(*this, solution, time);
+    record_time      = -1.;
     current_time     = time;
     current_upper    = upper_punch_position(time);
     update_ghosts();

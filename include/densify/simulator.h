@@ -187,6 +187,12 @@ namespace densify
                std::vector<unsigned int>(particles.size(), 0);
     }
 
+    /// contact_partners() and the die wall's particle_tool_forces() at the
+    /// station just reached: from the explicit pass that recorded them there
+    /// (the same state), else by passes of their own.
+    std::pair<std::vector<unsigned int>, std::vector<double>>
+    station_contacts() const;
+
     /// Rigid translation of each particle: its mean displacement (mm).
     std::vector<Tensor<1, 3>>
     particle_mean_displacements() const;
@@ -604,6 +610,12 @@ namespace densify
     /// solution's values, and the forces on their way into a residual.
     AllValues   explicit_values, explicit_committed;
     LocalForces explicit_forces;
+    /// The contact record of the explicit pass at the station (the scene
+    /// time record_time; negative: no pass records), and whether the last
+    /// station's pass filled it.
+    ContactRecord station_record;
+    double        record_time      = -1.;
+    bool          station_recorded = false;
     /// The explicit run's last station account.
     ExplicitDynamics::Account         explicit_account;
     std::vector<StepStatistics>       step_statistics;

@@ -764,10 +764,19 @@ namespace densify
     const Mapping<3>                    &mapping,
     const TrilinosWrappers::MPI::Vector &solution) const
   {
-    std::set<std::pair<unsigned, unsigned>> pairs;
-    Outputs                                 out;
+    std::set<std::pair<unsigned int, unsigned int>> pairs;
+    Outputs                                         out;
     out.pairs = &pairs;
     loop(mapping, solution, out);
+    return partners_of(pairs);
+  }
+
+
+
+  std::vector<unsigned int>
+  ParticleContact::partners_of(
+    const std::set<std::pair<unsigned int, unsigned int>> &pairs) const
+  {
     std::vector<unsigned int> flat;
     for (const auto &[a, b] : pairs)
       {

@@ -8,7 +8,10 @@
 
 #include <deal.II/fe/mapping.h>
 
+#include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace boost
 {
@@ -25,6 +28,20 @@ namespace densify
 
   class AllValues;
   class LocalForces;
+
+  /**
+   * What the contact terms also record in one explicit pass, for the
+   * station's statistics: the pairs of particles in contact and each
+   * particle's normal force from the die wall, on this rank's contact
+   * points (the caller sums over the ranks).
+   */
+  struct ContactRecord
+  {
+    /// Pairs of particles in contact, the smaller index first.
+    std::set<std::pair<unsigned int, unsigned int>> pairs;
+    /// Normal force (N) of the die wall on each particle (by index).
+    std::vector<double> die_force;
+  };
 
   /// Where and how a force term is evaluated.
   struct AssemblyContext
@@ -47,6 +64,9 @@ namespace densify
     /// Explicit dynamics: where a term that adds_plain_forces() adds its
     /// forces instead of the residual vector, or null.
     LocalForces *plain_forces = nullptr;
+    /// Explicit dynamics: where the contact terms record what
+    /// ContactRecord holds in this pass, or null.
+    ContactRecord *record = nullptr;
   };
 
   /**

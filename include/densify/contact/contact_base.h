@@ -10,12 +10,15 @@
 
 #include <densify/assembly/all_values.h>
 #include <densify/assembly/force_term.h>
+#include <densify/contact/rigid_tools.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <set>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace densify
@@ -57,6 +60,13 @@ namespace densify
     const AllValues *values           = nullptr;
     const AllValues *committed_values = nullptr;
     LocalForces     *plain_residual   = nullptr;
+    /// Where the particle contact adds each pair of particles in contact
+    /// (the smaller index first), or null.
+    std::set<std::pair<unsigned int, unsigned int>> *pairs = nullptr;
+    /// Where the tool contact adds each particle's normal force (N) from the
+    /// tools of kind @p force_kind, or null.
+    std::vector<double> *particle_force = nullptr;
+    ToolKind             force_kind     = ToolKind::die_wall;
   };
 
   /**
@@ -171,6 +181,9 @@ namespace densify
           out.values           = plain->values;
           out.committed_values = plain->committed_values;
           out.plain_residual   = plain->plain_residual;
+          out.pairs            = plain->pairs;
+          out.particle_force   = plain->particle_force;
+          out.force_kind       = plain->force_kind;
         }
       std::vector<double> pressure(lambda.size());
       if (relaxation > 0.)
@@ -239,7 +252,13 @@ namespace densify
       plain.values           = context.values;
       plain.committed_values = context.committed_values;
       plain.plain_residual   = context.plain_forces;
-      const bool use_plain   = context.values != nullptr &&
+      if (context.record != nullptr)
+        {
+          plain.pairs          = &context.record->pairs;
+          plain.particle_force = &context.record->die_force;
+          plain.force_kind     = ToolKind::die_wall;
+        }
+      const bool use_plain = context.values != nullptr &&
                              context.committed_values != nullptr &&
                              context.plain_forces != nullptr;
       last = context.explicit_dynamics ?

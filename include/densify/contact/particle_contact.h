@@ -186,6 +186,13 @@ namespace densify
     contact_partners(const Mapping<3>                    &mapping,
                      const TrilinosWrappers::MPI::Vector &solution) const;
 
+    /// Number of distinct contact partners of each particle from the pairs
+    /// in contact that a pass recorded on each rank (ContactOutputs::pairs;
+    /// @p pairs: this rank's), on every rank.
+    std::vector<unsigned int>
+    partners_of(
+      const std::set<std::pair<unsigned int, unsigned int>> &pairs) const;
+
     /// As ToolContact::project_fields().
     void
     project_fields(const Mapping<3>                    &mapping,
@@ -274,11 +281,10 @@ namespace densify
     /// What one pass writes besides the result.
     struct Outputs : ContactOutputs
     {
-      std::set<std::pair<unsigned, unsigned>> *pairs          = nullptr;
-      const DoFHandler<3>                     *post           = nullptr;
-      SurfaceFieldSums                        *sums           = nullptr;
-      std::vector<unsigned int>               *new_assignment = nullptr;
-      unsigned int                            *n_changed      = nullptr;
+      const DoFHandler<3>       *post           = nullptr;
+      SurfaceFieldSums          *sums           = nullptr;
+      std::vector<unsigned int> *new_assignment = nullptr;
+      unsigned int              *n_changed      = nullptr;
     };
 
     /// One pass over the slave points; the core of the class.

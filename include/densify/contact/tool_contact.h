@@ -220,10 +220,8 @@ namespace densify
     /// What one pass over the contact points writes besides the forces.
     struct Outputs : ContactOutputs
     {
-      const DoFHandler<3> *post           = nullptr;
-      SurfaceFieldSums    *sums           = nullptr;
-      std::vector<double> *particle_force = nullptr;
-      ToolKind             force_kind     = ToolKind::die_wall;
+      const DoFHandler<3> *post = nullptr;
+      SurfaceFieldSums    *sums = nullptr;
     };
 
     /// One pass over all contact quadrature points; the core of the class.
