@@ -124,14 +124,17 @@ namespace densify
     e.consistent_friction_tangent =
       e.any_friction() &&
       (tangent == "consistent" || tangent == "secant-start" ||
-       (tangent == "auto" && !cg));
+       tangent == "symmetric-secant-start" || tangent == "auto");
+    e.friction_pressure_coupling =
+      tangent != "symmetric-secant-start" && !(tangent == "auto" && cg);
     e.friction_secant_start =
       e.consistent_friction_tangent && tangent != "consistent";
     if (solver == "auto")
-      e.linear_solver = (e.consistent_friction_tangent ||
-                         (e.particle_contact && geometric == "true")) ?
-                          LinearSolverType::gmres_amg :
-                          LinearSolverType::cg_amg;
+      e.linear_solver =
+        ((e.consistent_friction_tangent && e.friction_pressure_coupling) ||
+         (e.particle_contact && geometric == "true")) ?
+          LinearSolverType::gmres_amg :
+          LinearSolverType::cg_amg;
     else
       e.linear_solver = solver == "cg-amg"    ? LinearSolverType::cg_amg :
                         solver == "gmres-amg" ? LinearSolverType::gmres_amg :

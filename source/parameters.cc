@@ -570,17 +570,21 @@ namespace densify
         "Friction tangent",
         contact.friction_tangent,
         "'symmetric': the slip tangent without its nonsymmetric coupling to "
-        "the pressure (CG works; Newton converges only linearly where "
-        "points slip); 'consistent': with it (quadratic Newton near slip, "
+        "the pressure and with the secant stiffness along the slip (CG "
+        "works; Newton converges only linearly where points slip); "
+        "'consistent': the exact one (quadratic Newton near slip, "
         "needs Solver/Linear solver = gmres-amg, gmres-lu, direct or auto); "
         "'secant-start': consistent, but each Newton solve's first "
         "iterations take the secant stiffness along the slip (where the "
         "exact tangent has none) until a correction moves no entry by more "
         "than a hundredth of half the smallest element size, which keeps a "
         "pore's slipping, yielding surface from huge corrections in dense "
-        "packings; 'auto' (keep it): secant-start "
-        "unless Solver/Linear solver = cg-amg, then symmetric.",
-        Patterns::Selection("auto|symmetric|consistent|secant-start"));
+        "packings; 'symmetric-secant-start': secant-start without the "
+        "coupling to the pressure, symmetric for CG; 'auto' (keep it): "
+        "secant-start, or symmetric-secant-start with Solver/Linear solver "
+        "= cg-amg.",
+        Patterns::Selection(
+          "auto|symmetric|consistent|secant-start|symmetric-secant-start"));
       prm.add_parameter(
         "Geometric tangent",
         contact.geometric_tangent,

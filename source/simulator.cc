@@ -300,8 +300,9 @@ namespace densify
 
     // the friction law of every contact pair
     FrictionLaw friction;
-    friction.model      = effects.friction_model;
-    friction.consistent = effects.consistent_friction_tangent;
+    friction.model             = effects.friction_model;
+    friction.consistent        = effects.consistent_friction_tangent;
+    friction.pressure_coupling = effects.friction_pressure_coupling;
     friction.tangential_ratio =
       prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
     const Quadrature<2> contact_points =

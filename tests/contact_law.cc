@@ -2,7 +2,9 @@
 // traction, for Coulomb stick, Coulomb slip and the arctangent law, with the
 // consistent tangent; the symmetric tangent is symmetric; and the secant
 // start adds the symmetric tangent's stiffness along the slip of Coulomb slip
-// to the consistent tangent, where that has none, and nothing else.
+// to the consistent tangent, where that has none, and nothing else; the
+// consistent tangent without its pressure coupling is symmetric and differs
+// from the consistent one by that coupling, (eps / p) t n^T, only.
 #include <densify/contact/contact_law.h>
 
 #include "test_utilities.h"
@@ -75,6 +77,22 @@ main()
             (rs.traction - r0.traction).norm() == 0. &&
             rs.pressure == r0.pressure &&
             (rs.stiffness - expected).norm() <= 1e-14 * K.norm();
+          // without the pressure coupling (symmetric-secant-start once
+          // the secant start has ended)
+          law.slip_secant          = false;
+          law.pressure_coupling    = false;
+          const ContactResponse ru = evaluate_contact_law(
+            lambda, g0 + n * d0, eps, n, t_old, d0, eps, law);
+          const Tensor<2, 3> coupling =
+            r0.status == ContactStatus::slip ?
+              Tensor<2, 3>(eps / r0.pressure * outer_product(r0.traction, n)) :
+              Tensor<2, 3>();
+          const bool uncoupled =
+            (ru.traction - r0.traction).norm() == 0. &&
+            (ru.stiffness + coupling - r0.stiffness).norm() <=
+              1e-14 * K.norm() &&
+            (ru.stiffness - transpose(ru.stiffness)).norm() <=
+              1e-14 * ru.stiffness.norm();
           std::cout << (model == FrictionModel::coulomb ? "Coulomb   " :
                                                           "arctangent")
                     << " slip " << std::setw(5) << slip << " history "
@@ -85,7 +103,8 @@ main()
                     << ", symmetric tangent symmetric "
                     << testing::yes(asymmetry < 1e-14)
                     << ", secant start as expected "
-                    << testing::yes(secant_start) << std::endl;
+                    << testing::yes(secant_start) << ", uncoupled symmetric "
+                    << testing::yes(uncoupled) << std::endl;
         }
   return testing::all_passed ? 0 : 1;
 }

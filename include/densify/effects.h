@@ -76,8 +76,11 @@ namespace densify
     double                           particle_friction = 0.;
     /// The friction law of every contact pair.
     FrictionModel friction_model = FrictionModel::coulomb;
-    /// The consistent (nonsymmetric) friction tangent where friction acts.
+    /// The consistent friction tangent where friction acts.
     bool consistent_friction_tangent = false;
+    /// With it, its nonsymmetric coupling of the slip traction with the
+    /// pressure (false: Contact/Friction tangent = symmetric-secant-start).
+    bool friction_pressure_coupling = true;
     /// With it, the secant along the slip in the first iterations of each
     /// Newton solve (Contact/Friction tangent = secant-start, or auto).
     bool friction_secant_start = false;

@@ -35,9 +35,14 @@ namespace densify
     double regularisation = 1e-4;
     /// Tangential (stick) penalty as a fraction of the normal penalty.
     double tangential_ratio = 1.;
-    /// Keep the nonsymmetric coupling of the slip traction with the
-    /// pressure in the tangent (needs a nonsymmetric linear solver).
+    /// The exact tangent of the slip traction (no stiffness along the slip)
+    /// and, with #pressure_coupling, its nonsymmetric coupling with the
+    /// pressure (which needs a nonsymmetric linear solver).
     bool consistent = false;
+    /// With #consistent: keep the coupling of the slip traction with the
+    /// pressure (false: the symmetric rest of the consistent tangent, which
+    /// CG can take; Contact/Friction tangent = symmetric-secant-start).
+    bool pressure_coupling = true;
     /// With #consistent: along the slip direction the secant stiffness
     /// eps_t mu p / |trial| instead of the exact tangent's none (set for the
     /// first iterations of a Newton solve, NewtonControl::secant_start). The
@@ -143,7 +148,7 @@ namespace densify
       }
     // t is proportional to p, and dp = -eps dg: the coupling (eps/p) t n^T
     // of the consistent tangent is not symmetric
-    if (friction.consistent)
+    if (friction.consistent && friction.pressure_coupling)
       r.stiffness += eps / r.pressure * outer_product(r.traction, n);
     return r;
   }
@@ -230,7 +235,8 @@ namespace densify
                     a / slip * (I - ss));
           }
       }
-    if (law.consistent && r.status == ContactStatus::slip)
+    if (law.consistent && law.pressure_coupling &&
+        r.status == ContactStatus::slip)
       terms.dt_dp = r.traction / p;
     return terms;
   }
