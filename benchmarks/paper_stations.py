@@ -2,11 +2,14 @@
 """The paper scene's stations from a run's statistics.csv: upper punch force,
 relative density and smallest cell volume ratio at the strokes 0.32 / 0.64 /
 0.96 / 1.024 / 1.152 / 1.216 / 1.28 mm (linear interpolation between the
-rows), and the force against the implicit reference of
-doc/paper_comparison.md (Sn, Fe or Cu; alpha = 0, no barrier).
+rows), and the force against an implicit reference of
+doc/paper_comparison.md: 'plain' (the default; Sn, Fe or Cu by the plain
+F-bar element: alpha = 0, no barrier) or 'defaults' (Sn or Fe with the
+defaults: "The reference with the defaults").
 
 Usage (from the source root):
-  python3 benchmarks/paper_stations.py OUTPUT_DIR/statistics.csv [Sn|Fe|Cu]
+  python3 benchmarks/paper_stations.py OUTPUT_DIR/statistics.csv [Sn|Fe|Cu] \
+    [plain|defaults]
 
 The tables of doc/verification.md ("The barrier against crushed cells")
 come from it, after for instance
@@ -23,6 +26,10 @@ REFERENCE = {
     "Fe": [5672.7, 8653.7, 16058.5, 19609.6, 32908.6, 39633.6, 49185.1],
     "Cu": [3745.4, 5709.9, 10599.8, 12935.7, 21736.8, 26187.0, 32543.8],
 }
+# doc/paper_comparison.md, "The reference with the defaults"
+REFERENCE_DEFAULTS = {
+    "Sn": [3493.4, 5368.8, 9963.1, 12147.7, 20448.7, 24601.3, 30111.6],
+}
 
 
 def interpolate(xs, ys, x):
@@ -37,11 +44,19 @@ def interpolate(xs, ys, x):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
-        sys.exit("usage: paper_stations.py STATISTICS.csv [Sn|Fe|Cu]")
-    material = sys.argv[2] if len(sys.argv) == 3 else "Sn"
+    if len(sys.argv) not in (2, 3, 4):
+        sys.exit("usage: paper_stations.py STATISTICS.csv [Sn|Fe|Cu] "
+                 "[plain|defaults]")
+    material = sys.argv[2] if len(sys.argv) >= 3 else "Sn"
+    which = sys.argv[3] if len(sys.argv) == 4 else "plain"
     if material not in REFERENCE:
         sys.exit("paper_stations.py: the material must be Sn, Fe or Cu")
+    if which not in ("plain", "defaults"):
+        sys.exit("paper_stations.py: the reference must be plain or defaults")
+    references = REFERENCE if which == "plain" else REFERENCE_DEFAULTS
+    if material not in references:
+        sys.exit(f"paper_stations.py: no reference with the defaults for "
+                 f"{material} yet (doc/paper_comparison.md); use plain")
     try:
         with open(sys.argv[1], newline="") as f:
             rows = list(csv.DictReader(f))
@@ -54,7 +69,7 @@ def main():
     density = [math.nan] + [float(r["relative_density"]) for r in rows]
     ratio = [1.0] + [float(r.get("min_cell_volume_ratio", "nan")) for r in rows]
     print("stroke_mm  F_upper_N  vs_reference  density_%  min_V/V0_to_here")
-    for x, reference in zip(STROKES, REFERENCE[material]):
+    for x, reference in zip(STROKES, references[material]):
         f = interpolate(stroke, force, x)
         d = interpolate(stroke, density, x)
         reached = [r for s, r in zip(stroke, ratio) if s <= x + 1e-9]
