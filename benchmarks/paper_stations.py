@@ -29,6 +29,7 @@ REFERENCE = {
 # doc/paper_comparison.md, "The reference with the defaults"
 REFERENCE_DEFAULTS = {
     "Sn": [3493.4, 5368.8, 9963.1, 12147.7, 20448.7, 24601.3, 30111.6],
+    "Fe": [5710.1, 8755.7, 16268.3, 19892.6, 33301.6, 40092.6, 50528.8],
 }
 
 
