@@ -1,6 +1,6 @@
 # CG with ML AMG on a frictional multi-particle scene: the seven tin spheres
 # of prm/seven_spheres_sn.prm (friction 0.2, 0.6 mm mesh), pressed 0.12 mm
-# in 4 steps with the symmetric friction tangent (the one CG can take), give
+# in 4 steps with the symmetric friction tangent (one of the two CG can take), give
 # the direct solver's forces and densities on 1 rank and on 2 ranks, to the
 # Newton tolerance (tests/cli/lib/solver_agree.bash). CG must really run:
 # more linear than Newton iterations.
