@@ -689,8 +689,10 @@ namespace densify
         "Checkpoint interval",
         output.checkpoint_interval,
         "Write a checkpoint (DIRECTORY/checkpoint/) every this many load "
-        "steps (integer >= 0; 0: only when the run is stopped by SIGINT, "
-        "SIGTERM or --stop-after). densify --resume continues from it.",
+        "steps and after the last one (integer >= 0; 0: only when the run "
+        "is stopped by SIGINT, SIGTERM or --stop-after). densify --resume "
+        "continues from it, a finished run with a longer End time, Number of "
+        "steps and load history.",
         Patterns::Integer(0));
     }
     prm.leave_subsection();

@@ -132,6 +132,103 @@ namespace densify
         }
       return result;
     }
+
+    /// Whether the fingerprint line @p line belongs to the load schedule,
+    /// which a resumed implicit run may extend: the end time, the number of
+    /// steps and the load histories.
+    bool
+    schedule_entry(const std::string &line)
+    {
+      const std::string key    = line.substr(0, line.find(" = "));
+      const std::string suffix = " history";
+      return key == "Time stepping/End time" ||
+             key == "Time stepping/Number of steps" ||
+             (key.size() > suffix.size() &&
+              key.compare(key.size() - suffix.size(), suffix.size(), suffix) ==
+                0);
+    }
+
+    /// @p fingerprint without its schedule entries, which go to
+    /// @p schedule (entry name to value).
+    std::string
+    split_schedule(const std::string                  &fingerprint,
+                   std::map<std::string, std::string> &schedule)
+    {
+      std::string        rest;
+      std::istringstream in(fingerprint);
+      for (std::string line; std::getline(in, line);)
+        if (schedule_entry(line))
+          {
+            const std::size_t eq = line.find(" = ");
+            schedule[line.substr(0, eq)] =
+              eq == std::string::npos ? std::string() : line.substr(eq + 3);
+          }
+        else
+          rest += line + '\n';
+      return rest;
+    }
+
+    /// Empty if the schedule @p current continues @p stored from a
+    /// checkpoint at time @p t: the same load step (End time / Number of
+    /// steps), an end time not before @p t, and every load history equal on
+    /// [0, t]. Otherwise what breaks it, for an error message.
+    std::string
+    schedule_break(const std::map<std::string, std::string> &stored,
+                   const std::map<std::string, std::string> &current,
+                   const double                              t)
+    {
+      const auto value = [](const std::map<std::string, std::string> &s,
+                            const std::string                        &key) {
+        const auto entry = s.find(key);
+        return entry == s.end() ? std::string() : entry->second;
+      };
+      const auto load_step = [&](const std::map<std::string, std::string> &s) {
+        return Utilities::string_to_double(value(s, "Time stepping/End time")) /
+               Utilities::string_to_int(
+                 value(s, "Time stepping/Number of steps"));
+      };
+      const auto seconds = [](const double x) {
+        std::ostringstream text;
+        text << std::setprecision(8) << x << " s";
+        return text.str();
+      };
+      if (std::abs(load_step(stored) - load_step(current)) >
+          1e-12 * load_step(stored))
+        return "a load step End time / Number of steps of " +
+               seconds(load_step(current)) + " instead of " +
+               seconds(load_step(stored));
+      if (Utilities::string_to_double(
+            value(current, "Time stepping/End time")) < t * (1. - 1e-12))
+        return "an End time before the checkpoint's time " + seconds(t);
+      for (const auto &[key, old_text] : stored)
+        {
+          const std::string new_text = value(current, key);
+          if (!schedule_entry(key) || key.rfind("Time stepping/", 0) == 0 ||
+              new_text == old_text)
+            continue;
+          const std::string broken =
+            "'" + key + " = " + new_text + "', which differs from '" +
+            old_text + "' before the checkpoint's time " + seconds(t);
+          if (Utilities::trim(old_text).empty() ||
+              Utilities::trim(new_text).empty())
+            return broken;
+          const auto          old_table = parse_table(old_text, key);
+          const auto          new_table = parse_table(new_text, key);
+          std::vector<double> times     = {0., t};
+          for (const auto *table : {&old_table, &new_table})
+            for (const auto &[time, v] : *table)
+              if (time < t)
+                times.push_back(time);
+          for (const double time : times)
+            {
+              const double a = interpolate(old_table, time);
+              if (std::abs(interpolate(new_table, time) - a) >
+                  1e-12 * (1. + std::abs(a)))
+                return broken;
+            }
+        }
+      return std::string();
+    }
   } // namespace
 
 
@@ -257,7 +354,12 @@ namespace densify
         info << "load step " << snapshot.step << " of " << prm.time.n_steps
              << ", time " << std::setprecision(10) << snapshot.time
              << ", written by " << Utilities::MPI::n_mpi_processes(comm)
-             << " MPI rank(s); continue with: densify FILE.prm --resume\n";
+             << " MPI rank(s); "
+             << (snapshot.step < prm.time.n_steps ?
+                   "continue with: densify FILE.prm --resume\n" :
+                   "press further with densify FILE.prm --resume and a "
+                   "longer Time stepping/End time, Number of steps and load "
+                   "history\n");
         info.close();
         if (info.fail())
           error = "checkpoint: " + write_error(info_name.string());
@@ -363,14 +465,20 @@ namespace densify
         if (!header.fingerprint.empty())
           header.fingerprint =
             checked_entries(header.fingerprint, prm.fingerprint);
+        // the load schedule may go on beyond the stopped run's end (a
+        // compact pressed further): compared apart, once the checkpoint's
+        // time is known
+        std::map<std::string, std::string> stored_schedule, schedule;
+        const std::string                  stored_rest =
+          split_schedule(header.fingerprint, stored_schedule);
+        const std::string rest = split_schedule(prm.fingerprint, schedule);
         if (!prm.fingerprint.empty() && !header.fingerprint.empty() &&
-            header.fingerprint != prm.fingerprint)
+            stored_rest != rest)
           throw InputError(
             "--resume: the checkpoint was written with other parameters (it "
             "has " +
-            first_difference(header.fingerprint, prm.fingerprint) +
-            ", this run " +
-            first_difference(prm.fingerprint, header.fingerprint) +
+            first_difference(stored_rest, rest) + ", this run " +
+            first_difference(rest, stored_rest) +
             "); resume with the parameters of the stopped run");
         double vertices = 0;
         for (const Point<3> &v : triangulation.get_vertices())
@@ -388,6 +496,31 @@ namespace densify
           &last_punch_increment &wall &solution_values &increment_values
             &pvd_records &dynamics &explicit_work &factors &calibration
               &calibrated_bound &mass_updates &mode &n_explicit;
+        if (step >= prm.time.n_steps)
+          throw InputError(
+            "--resume: the checkpoint is of the run's last step " +
+            std::to_string(step) +
+            "; to press further, resume with a longer Time stepping/End "
+            "time, Number of steps (the same load step) and load history");
+        if (!prm.fingerprint.empty() && !header.fingerprint.empty() &&
+            stored_schedule != schedule)
+          {
+            const std::string broken =
+              schedule_break(stored_schedule, schedule, current_time);
+            if (!broken.empty())
+              throw InputError(
+                "--resume: this run has " + broken +
+                "; a resumed run may only go on beyond the stopped run's "
+                "schedule (the same load step, the load histories unchanged "
+                "up to the checkpoint)");
+            if (effects.method != Method::implicit)
+              throw InputError(
+                "--resume: Time stepping/End time, Number of steps and the "
+                "load histories may change on resume only with Solver/Method "
+                "= implicit (an explicit run maps the schedule onto "
+                "Explicit/Loading time); resume with the stopped run's "
+                "schedule");
+          }
         if (header.version >= 7)
           archive &punch_control;
         if (header.version >= 8)

@@ -1,18 +1,24 @@
 # Checkpoint and restart. A resumed run reproduces the uninterrupted one:
 #  1. two J2 tin spheres (finite strain, friction 0.2) touching each other
-#     and the die: the periodic checkpoint after step 4 (plastic history,
-#     tool and particle contact multipliers and friction history in use) is
-#     resumed in a copy of the output; steps 5-6 equal the uninterrupted run;
+#     and the die: the run with a checkpoint every 4 steps writes one after
+#     step 4 and one after its last step 6; a run stopped after step 4
+#     (plastic history, tool and particle contact multipliers and friction
+#     history in use) is resumed; steps 5-6 equal the uninterrupted run;
 #  2. SIGTERM stops a run after the current step with a checkpoint (exit 3),
 #     --resume finishes it; statistics.csv, particles.csv and solution.pvd
 #     equal the uninterrupted run's;
 #  3. on 2 MPI ranks with --stop-after, resumed on 2 ranks: equal to the
 #     uninterrupted 1-rank run to the Newton tolerance;
 #  4. one-line errors (exit 2): resume on another number of ranks, with other
-#     parameters, or without a checkpoint.
+#     parameters, or without a checkpoint;
+#  5. a finished run pressed further: its last step's checkpoint resumed with
+#     a longer End time, Number of steps and punch history (the same load
+#     step) equals the run made to the longer schedule at once; a finished
+#     run resumed as it was, a history changed before the checkpoint or
+#     another load step are one-line errors.
 # Each group of runs is a part of its own (tests/cli/lib/parts.bash); the
 # check compares the stopped runs with the uninterrupted one.
-# ctest parts: free pair signal mpi:2 errors
+# ctest parts: free pair signal mpi:2 errors further
 set -eu
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/parts.bash"
@@ -52,7 +58,7 @@ rm -rf pair pair_resumed
 "$DENSIFY" "$prm" "${pair[@]}" --set "Output/Directory=pair" \
   --set "Output/Checkpoint interval=4" > pair.log
 grep -q "checkpoint written after step 4" pair.log
-grep -q "load step 4 of 6" pair/checkpoint/info.txt
+grep -q "load step 6 of 6" pair/checkpoint/info.txt
 /usr/bin/python3 - pair/statistics.csv <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -61,7 +67,11 @@ assert float(rows[3]["particle_contact_force"]) > 0, rows[3]
 assert int(rows[3]["contact_pairs"]) == 1, rows[3]
 assert float(rows[3]["die_wall_force"]) > 0, rows[3]
 PY
-cp -r pair pair_resumed
+set +e
+"$DENSIFY" "$prm" "${pair[@]}" --set "Output/Directory=pair_resumed" \
+  --set "Output/Checkpoint interval=4" --stop-after 4 > pair_stopped.log
+set -e
+grep -q "load step 4 of 6" pair_resumed/checkpoint/info.txt
 "$DENSIFY" "$prm" "${pair[@]}" --set "Output/Directory=pair_resumed" \
   --set "Output/Checkpoint interval=4" --resume > pair_resumed.log
 grep -q "Resumed from the checkpoint after step 4" pair_resumed.log
@@ -146,6 +156,43 @@ set -e
 cat none.err
 [ $rc -eq 2 ] && [ "$(wc -l < none.err)" -eq 1 ]
 grep -q "no checkpoint" none.err
+fi
+
+# 5. pressed further
+if part further; then
+rm -rf short long further
+longer=(--set "Time stepping/End time=1.5" --set "Time stepping/Number of steps=9"
+        --set "Tools/Upper punch/Displacement history=0:0, 1.5:0.18")
+"$DENSIFY" "$prm" "${free[@]}" --set "Output/Directory=short" \
+  --set "Output/Checkpoint interval=4" > short.log
+grep -q "load step 6 of 6.*press further" short/checkpoint/info.txt
+"$DENSIFY" "$prm" "${free[@]}" "${longer[@]}" --set "Output/Directory=long" > long.log
+cp -r short further
+"$DENSIFY" "$prm" "${free[@]}" "${longer[@]}" --set "Output/Directory=further" \
+  --resume > further.log
+grep -q "Resumed from the checkpoint after step 6" further.log
+[ "$(grep -c '^step ' further.log)" -eq 3 ]
+same_statistics $all 1e-9 long/statistics.csv further/statistics.csv
+"$NUMDIFF" -q -r 1e-9 -a 1e-12 -s ', \n' long/particles.csv further/particles.csv
+# the errors, each one line and exit 2
+refused() { # expected text, options
+  local expected=$1; shift
+  set +e
+  "$DENSIFY" "$prm" "${free[@]}" --set "Output/Directory=short" --resume "$@" \
+    > /dev/null 2> refused.err
+  local rc=$?
+  set -e
+  cat refused.err
+  [ $rc -eq 2 ] && [ "$(wc -l < refused.err)" -eq 1 ]
+  grep -q "$expected" refused.err
+}
+refused "the checkpoint is of the run's last step 6; to press further"
+refused "Displacement history = 0:0, 1.5:0.2', which differs from '0:0, 1:0.12' before the checkpoint's time 1 s" \
+  --set "Time stepping/End time=1.5" --set "Time stepping/Number of steps=9" \
+  --set "Tools/Upper punch/Displacement history=0:0, 1.5:0.2"
+refused "a load step End time / Number of steps of 0.15 s instead of 0.16666667 s" \
+  --set "Time stepping/End time=1.5" --set "Time stepping/Number of steps=10" \
+  --set "Tools/Upper punch/Displacement history=0:0, 1.5:0.18"
 fi
 
 # the stopped and resumed runs against the uninterrupted one
