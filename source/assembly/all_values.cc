@@ -8,15 +8,31 @@
 
 namespace densify
 {
+  const std::vector<types::global_dof_index> &
+  LocalIndices::operator()(const Epetra_BlockMap &from)
+  {
+    if (!map || from.DataPtr() != map->DataPtr())
+      {
+        map = std::make_unique<Epetra_BlockMap>(from);
+        global.resize(from.NumMyElements());
+        for (int k = 0; k < from.NumMyElements(); ++k)
+          global[k] = TrilinosWrappers::global_index(from, k);
+        ++layouts;
+      }
+    return global;
+  }
+
+
+
   void
   AllValues::gather(const TrilinosWrappers::MPI::Vector &vector)
   {
-    const Epetra_MultiVector &v = vector.trilinos_vector();
+    const Epetra_MultiVector                   &v = vector.trilinos_vector();
+    const std::vector<types::global_dof_index> &global = indices(v.Map());
     values.resize(vector.size());
-    const int     n     = v.Map().NumMyElements();
     const double *local = v[0];
-    for (int k = 0; k < n; ++k)
-      values[TrilinosWrappers::global_index(v.Map(), k)] = local[k];
+    for (std::size_t k = 0; k < global.size(); ++k)
+      values[global[k]] = local[k];
   }
 
 
@@ -45,19 +61,20 @@ namespace densify
   void
   LocalForces::start(const TrilinosWrappers::MPI::Vector &vector)
   {
-    const Epetra_MultiVector &v = vector.trilinos_vector();
-    const int                 n = v.Map().NumMyElements();
-    if (forces.size() != vector.size())
+    const Epetra_MultiVector                   &v = vector.trilinos_vector();
+    const std::vector<types::global_dof_index> &global = indices(v.Map());
+    if (forces.size() != vector.size() || owned_layout != indices.n_layouts())
       {
         forces.resize(vector.size());
         owned.assign(vector.size(), false);
-        for (int k = 0; k < n; ++k)
-          owned[TrilinosWrappers::global_index(v.Map(), k)] = true;
+        for (const types::global_dof_index i : global)
+          owned[i] = true;
+        owned_layout = indices.n_layouts();
       }
     std::fill(forces.begin(), forces.end(), 0.);
     const double *local = v[0];
-    for (int k = 0; k < n; ++k)
-      forces[TrilinosWrappers::global_index(v.Map(), k)] = local[k];
+    for (std::size_t k = 0; k < global.size(); ++k)
+      forces[global[k]] = local[k];
   }
 
 
@@ -65,11 +82,11 @@ namespace densify
   void
   LocalForces::finish(TrilinosWrappers::MPI::Vector &vector)
   {
-    Epetra_MultiVector &v     = vector.trilinos_vector();
-    const int           n     = v.Map().NumMyElements();
-    double             *local = v[0];
-    for (int k = 0; k < n; ++k)
-      local[k] = forces[TrilinosWrappers::global_index(v.Map(), k)];
+    Epetra_MultiVector                         &v = vector.trilinos_vector();
+    const std::vector<types::global_dof_index> &global = indices(v.Map());
+    double                                     *local  = v[0];
+    for (std::size_t k = 0; k < global.size(); ++k)
+      local[k] = forces[global[k]];
     other_indices.clear();
     other_values.clear();
     for (types::global_dof_index i = 0; i < forces.size(); ++i)

@@ -15,6 +15,36 @@ namespace densify
   using namespace dealii;
 
   /**
+   * The global index of each entry a Trilinos vector holds on this rank (its
+   * map's local elements), looked up once per layout: the step loops of
+   * explicit dynamics then read and write the vector's entries through a
+   * plain array, where Epetra_BlockMap::GID() is a call per entry. It holds a
+   * copy of the map, so a layout it has seen cannot be freed and another one
+   * made at its address.
+   */
+  class LocalIndices
+  {
+  public:
+    /// The global index of each local entry of @p map, in local order.
+    const std::vector<types::global_dof_index> &
+    operator()(const Epetra_BlockMap &map);
+
+    /// How many layouts operator() has seen: a new value, a new layout.
+    unsigned int
+    n_layouts() const
+    {
+      return layouts;
+    }
+
+  private:
+    std::unique_ptr<Epetra_BlockMap>     map;
+    std::vector<types::global_dof_index> global;
+    unsigned int                         layouts = 0;
+  };
+
+
+
+  /**
    * The values a (ghosted) Trilinos vector holds on this rank, read once
    * into a plain array indexed by global DoF index. Every rank holds the
    * whole mesh (parallel::shared::Triangulation), so the array has the
@@ -45,6 +75,7 @@ namespace densify
 
   private:
     std::vector<double> values;
+    LocalIndices        indices;
   };
 
 
@@ -107,6 +138,9 @@ namespace densify
     std::vector<double> forces;
     /// Per global DoF index: owned by this rank?
     std::vector<bool> owned;
+    LocalIndices      indices;
+    /// The layout @p owned was made for (LocalIndices::n_layouts()).
+    unsigned int owned_layout = 0;
     /// Work space for the entries owned elsewhere.
     std::vector<types::global_dof_index> other_indices;
     std::vector<double>                  other_values;
