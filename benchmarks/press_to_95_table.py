@@ -4,7 +4,9 @@
 the upper punch pressure at 80 / 85 / 90 / 92.5 / 95 % relative density by
 each method (upper_punch_stress of statistics.csv: F_upper over the die's
 bore), the explicit run against the implicit one, the smallest V/V0
-and the wall time; writes OUT/MATERIAL_METHOD.csv (density %, MPa)."""
+and the wall time; writes OUT/MATERIAL_METHOD.csv (density %, MPa).
+A method without OUT/MATERIAL_METHOD/statistics.csv is "not run"; one
+without OUT/MATERIAL_METHOD.seconds takes its run's own wall_seconds."""
 import csv, sys
 out, materials = sys.argv[1], sys.argv[2].split()
 stations = [80.0, 85.0, 90.0, 92.5, 95.0]
@@ -29,8 +31,18 @@ for material in materials:
     for method in ("implicit", "explicit"):
         name = f"{material}_{method}"
         rs = rows(name)
-        seconds = float(open(f"{out}/{name}.seconds").read())
-        failed = [l.strip() for l in open(f"{out}/{name}.log") if "error" in l or "exit" in l]
+        if not rs:
+            print(f"{material} | {method} | not run")
+            continue
+        try:
+            seconds = float(open(f"{out}/{name}.seconds").read())
+        except FileNotFoundError:
+            seconds = float(rs[-1]["wall_seconds"])
+        try:
+            failed = [l.strip() for l in open(f"{out}/{name}.log")
+                      if "error" in l or ("exit" in l and "exit 0" not in l)]
+        except FileNotFoundError:
+            failed = []
         c = curve(rs)
         curves[method] = c
         with open(f"{out}/{name}.csv", "w") as f:
@@ -42,6 +54,8 @@ for material in materials:
         print(f"{material} | {method} | {end:.2f} | {vmin:.3f} | {seconds:.0f} | "
               + " | ".join("%.2f" % at(c, s) for s in stations)
               + ("  (" + failed[-1] + ")" if failed else ""))
+    if len(curves) < 2:
+        continue
     diff = [100 * (at(curves["explicit"], s) / at(curves["implicit"], s) - 1)
             for s in stations]
     print(f"{material} | explicit - implicit | | | | "

@@ -106,6 +106,23 @@ namespace densify
     const Material &material = *materials[cell->material_id()];
     const bool      finite   = material.finite_strain();
     Tensor<2, 3>    P;
+    // a law whose corners share the Kirchhoff deviator (J2): one return
+    // mapping for the cell's F, whose isochoric part every corner's Fbar
+    // shares, and each corner's pressure from its own volume ratio, as the
+    // explicit force kernel evaluates them; the corners' committed states
+    // are one state (up to round-off in implicit runs), that of corner 0
+    double                p_a = 0.;
+    SymmetricTensor<2, 3> tau_dev;
+    bool                  shared =
+      nodal_averaging && finite && material.kirchhoff_pressure(0., p_a);
+    if (shared)
+      shared = material.kirchhoff_deviator(
+        unit_symmetric_tensor<3>() + grad_u[0],
+        history != nullptr ?
+          &(*history)[cell->active_cell_index() * history_per_cell] :
+          nullptr,
+        nullptr,
+        tau_dev);
     for (unsigned int q = 0; q < rule.size(); ++q)
       {
         MaterialPointValues &v = values[q];
@@ -114,9 +131,10 @@ namespace densify
         // with the nodal-averaged F-bar the material sees the corner's Fbar
         // (F alone would give the cell's own, locking volume change to the
         // pressure)
+        double j_a = 1.;
         if (nodal_averaging)
           {
-            const double j_a = blended_volume_measure(
+            j_a = blended_volume_measure(
               j_bar[cell->vertex_index(nearest_corner[q])],
               finite ? determinant(F) : trace(F) - 2.,
               nodal_averaging->cell_volume_weight(cell->material_id()),
@@ -125,6 +143,18 @@ namespace densify
           }
         const unsigned int k = cell->active_cell_index() * history_per_cell +
                                (nodal_averaging ? nearest_corner[q] : q);
+        if (shared)
+          {
+            material.kirchhoff_pressure(std::log(j_a), p_a);
+            v.sigma =
+              (Tensor<2, 3>(tau_dev) + p_a * unit_symmetric_tensor<3>()) / j_a;
+            v.von_mises = von_mises(v.sigma);
+            v.plastic_strain =
+              history != nullptr ?
+                material.equivalent_plastic_strain((*history)[k]) :
+                0.;
+            continue;
+          }
         MaterialState scratch;
         material.stress(F,
                         history != nullptr ? &(*history)[k] : nullptr,
