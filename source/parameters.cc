@@ -689,10 +689,11 @@ namespace densify
         "Checkpoint interval",
         output.checkpoint_interval,
         "Write a checkpoint (DIRECTORY/checkpoint/) every this many load "
-        "steps and after the last one (integer >= 0; 0: only when the run "
-        "is stopped by SIGINT, SIGTERM or --stop-after). densify --resume "
-        "continues from it, a finished run with a longer End time, Number of "
-        "steps and load history.",
+        "steps, the last step included where it is a multiple (integer >= 0; "
+        "0: only when the run is stopped by SIGINT, SIGTERM or "
+        "--stop-after). densify --resume continues from it; from a finished "
+        "run's last step, with a longer End time, Number of steps and load "
+        "history.",
         Patterns::Integer(0));
     }
     prm.leave_subsection();

@@ -882,10 +882,10 @@ namespace densify
             guard_snapshot_cost = snapshot.wall_time();
             guard_snapshot_wall = s.wall_seconds;
           }
-        // the last step's too: a finished run can be pressed further
-        if (stop ||
-            (prm.output.checkpoint_interval > 0 &&
-             (step == n_steps || step % prm.output.checkpoint_interval == 0)))
+        // the last step's too where it is a multiple of the interval: a
+        // finished run can be pressed further
+        if (stop || (prm.output.checkpoint_interval > 0 &&
+                     step % prm.output.checkpoint_interval == 0))
           {
             if (guard_snapshot.step == step)
               store_checkpoint(guard_snapshot);

@@ -37,7 +37,7 @@ namespace densify
   namespace
   {
     /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 8;
+    constexpr unsigned int checkpoint_version = 9;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -298,8 +298,9 @@ namespace densify
         }
       // the explicit steps the mass scaling was set for
       unsigned int n_explicit = prm.explicit_dynamics.n_steps;
+      double       target     = calibration_target;
       archive &dynamics &work &factors &calibration &bound &updates &mode
-        &n_explicit &punch_control &lower_control;
+        &n_explicit &punch_control &lower_control &target;
       // each force term's state (history, multipliers, friction)
       for (const ForceTerm *term : force_terms())
         term->write_checkpoint(archive);
@@ -447,9 +448,10 @@ namespace densify
         archive                        &header;
         // format 6 lacks the punch controls' state, format 7 the lower
         // punch's, which a run of that densify (displacement control only)
-        // left at their start
+        // left at their start; format 8 the calibration's target (its
+        // explicit runs raised the calibration at once)
         if (header.version != checkpoint_version && header.version != 6 &&
-            header.version != 7)
+            header.version != 7 && header.version != 8)
           throw InputError(
             "--resume: checkpoint '" + file.string() + "' has format version " +
             std::to_string(header.version) +
@@ -525,6 +527,10 @@ namespace densify
           archive &punch_control;
         if (header.version >= 8)
           archive &lower_control;
+        // format 8 and before: no rise of the calibration under way
+        calibration_target = calibration;
+        if (header.version >= 9)
+          archive &calibration_target;
         for (ForceTerm *term : force_terms())
           term->read_checkpoint(archive);
       }

@@ -66,7 +66,8 @@ namespace densify
     // below) and for the cells' later distortion
     lumped_mass->calibrate(largest_frequency2(mass), calibration_margin, true);
     lumped_mass->update(solution_ghosted, required, mass);
-    calibrated_bound = lumped_mass->bound_frequency2();
+    calibrated_bound   = lumped_mass->bound_frequency2();
+    calibration_target = lumped_mass->calibration_factor();
     // Explicit/Contact stiffness, per particle from its material
     std::vector<double>           stiffness;
     std::map<std::string, double> by_material;
@@ -164,6 +165,10 @@ namespace densify
   {
     TimerOutput::Scope t(timer, "Explicit: mass");
     update_ghosts();
+    if (lumped_mass->calibration_factor() < calibration_target)
+      lumped_mass->set_calibration_factor(
+        std::min(calibration_target,
+                 calibration_rise * lumped_mass->calibration_factor()));
     double stable = lumped_mass->update(solution_ghosted, required_step, mass);
     // the calibration measured anew once the cells' bound has moved by more
     // than a tenth since the last measurement (the cells flatten as the
@@ -179,13 +184,22 @@ namespace densify
         lumped_mass->calibrate(largest_frequency2(mass),
                                calibration_margin,
                                false);
+        calibration_target = lumped_mass->calibration_factor();
+        // a rise within the margin: the mass before it gives a stable step
+        // at the measured frequency, so the mass follows over stations (at
+        // once it kicks the compact: the nodes keep their momentum, so the
+        // nodes that gain mass slow down at once)
+        if (calibration_target > calibration_rise * before &&
+            calibration_target <= calibration_margin * before)
+          lumped_mass->set_calibration_factor(calibration_rise * before);
         stable = lumped_mass->update(solution_ghosted, required_step, mass);
         calibrated_bound = lumped_mass->bound_frequency2();
         // in log.txt only: a line per measurement would crowd the progress
         if (this_rank == 0)
           log_file << "Explicit dynamics: stable step measured anew at t = "
                    << load_time << ": calibration " << before << " -> "
-                   << lumped_mass->calibration_factor() << ", added mass "
+                   << calibration_target << " (applied "
+                   << lumped_mass->calibration_factor() << "), added mass "
                    << 100. * lumped_mass->added_mass_fraction() << " %"
                    << std::endl;
       }

@@ -568,6 +568,14 @@ namespace densify
     /// last measurement of the largest frequency (1/s^2).
     unsigned int mass_updates     = 0;
     double       calibrated_bound = 0.;
+    /// The calibration factor of the last measurement. A rise within
+    /// calibration_margin (the mass before it still gives a stable step) is
+    /// approached by at most calibration_rise a station, so that the mass of
+    /// nodes that move with the compact grows over stations, not at once.
+    double calibration_target = 0.;
+    /// The largest growth of the applied calibration factor from one station
+    /// to the next, about calibration_margin^(1 / recalibration_interval).
+    static constexpr double calibration_rise = 1.0226;
     /// The power iteration's last vector, the start of the next one.
     TrilinosWrappers::MPI::Vector frequency_mode;
     /// The explicit run's contact penalty per particle (MPa/mm).
