@@ -228,8 +228,7 @@ namespace densify
         "(integer >= 0), lambda += (p - lambda) / N: the penetration of "
         "lasting contacts vanishes, so the soft penalty of explicit runs "
         "does not bias the forces. This integral action can drive an "
-        "undamped elastic contact unstable (plastic compaction damps it: "
-        "200 ran stable on the Sn paper scene without damping, "
+        "undamped elastic contact unstable (plastic compaction damps it; "
         "doc/theory.md); check KE/IE. 0: pure penalty (penetration p / "
         "eps).",
         Patterns::Integer(0));

@@ -8,13 +8,13 @@
 // each outer one three, the floating particle does not move, and no particle
 // drifts sideways by more than 0.01 mm = 5 % of the element size at the
 // contacts. The unstructured meshes are not symmetric, so the state is
-// symmetric only up to the discretisation: 0.0035 mm (centre) and 0.0044 mm
+// symmetric only up to the discretisation: 0.0035 mm (centre) and 0.0043 mm
 // (outer, sideways) measured; an unrestrained sphere in a wider frictionless
 // die moved 0.26 mm sideways.
 //
 // The same frictionless (punches, die and particles), with the same checks
 // and Contact/Hold poles on axis = vertical. Without those springs Newton
-// takes 337 iterations instead of 185 (the corrections mostly the spheres'
+// takes 328 iterations instead of 185 (the corrections mostly the spheres'
 // rigid motions, doc/roadmap.md); the springs' force is printed relative
 // to the particle contact force.
 // Without friction nothing resists a rotation of the whole layer about the
