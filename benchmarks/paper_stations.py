@@ -2,7 +2,8 @@
 """The paper scene's stations from a run's statistics.csv: upper punch force,
 relative density and smallest cell volume ratio at the strokes 0.32 / 0.64 /
 0.96 / 1.024 / 1.152 / 1.216 / 1.28 mm (linear interpolation between the
-rows), and the force against an implicit reference of
+rows), the force curve's largest jump from 60 % density on, and the force
+against an implicit reference of
 doc/paper_comparison.md: 'plain' (the default; Sn, Fe or Cu by the plain
 F-bar element: alpha = 0, no barrier) or 'defaults' (Sn or Fe with the
 defaults: "The reference with the defaults").
@@ -79,6 +80,19 @@ def main():
               f"  {100 * d:8.3f}  {smallest:.3f}")
     print(f"smallest V/V0 of the run: {min(ratio):.3f} "
           f"(last row: {ratio[-1]:.3f}, stroke {stroke[-1]:.4f} mm)")
+    # the force curve's smoothness from 60 % relative density on: the
+    # largest second difference of ln F_upper between consecutive rows
+    # (a kick of the compact shows as a jump up and back)
+    jumps = [(abs(math.log(force[i + 1]) - 2 * math.log(force[i])
+                  + math.log(force[i - 1])), rows[i - 1]["step"])
+             for i in range(2, len(force) - 1)
+             if density[i] >= 0.6 and min(force[i - 1:i + 2]) > 0]
+    if jumps:
+        jump, step = max(jumps)
+        print(f"largest jump of the force curve from 60 % density on: "
+              f"{100 * jump:.1f} % (second difference of ln F_upper, "
+              f"row {step}); rows above 2 %: "
+              f"{sum(1 for j, _ in jumps if j > 0.02)}")
 
 
 if __name__ == "__main__":

@@ -181,14 +181,28 @@ namespace densify
     if (drift > 0.1 || mass_updates % recalibration_interval == 0)
       {
         const double before = lumped_mass->calibration_factor();
-        lumped_mass->calibrate(largest_frequency2(mass),
-                               calibration_margin,
-                               false);
+        double       omega2 = largest_frequency2(mass);
+        lumped_mass->calibrate(omega2, calibration_margin, false);
+        // a fall measured from the last mode may be the power iteration's
+        // (it approaches the largest frequency from below, slowly where a
+        // flattening cell's new mode lies far from the last one), not the
+        // mesh's: it is measured again from the vertices' start vector and
+        // the larger of the two kept
+        const bool fell = lumped_mass->calibration_factor() < before;
+        if (fell)
+          {
+            const TrilinosWrappers::MPI::Vector last_mode = frequency_mode;
+            frequency_mode    = TrilinosWrappers::MPI::Vector();
+            const double cold = largest_frequency2(mass);
+            if (cold < omega2)
+              frequency_mode = last_mode;
+            omega2 = std::max(omega2, cold);
+            lumped_mass->calibrate(omega2, calibration_margin, false);
+          }
         calibration_target = lumped_mass->calibration_factor();
         // a rise within the margin: the mass before it gives a stable step
-        // at the measured frequency, so the mass follows over stations (at
-        // once it kicks the compact: the nodes keep their momentum, so the
-        // nodes that gain mass slow down at once)
+        // at the measured frequency, so the mass follows over stations, a
+        // little at each
         if (calibration_target > calibration_rise * before &&
             calibration_target <= calibration_margin * before)
           lumped_mass->set_calibration_factor(calibration_rise * before);
@@ -201,6 +215,9 @@ namespace densify
                    << calibration_target << " (applied "
                    << lumped_mass->calibration_factor() << "), added mass "
                    << 100. * lumped_mass->added_mass_fraction() << " %"
+                   << (fell ?
+                         " (a fall: measured again from the start vector)" :
+                         "")
                    << std::endl;
       }
     return stable;
