@@ -6,7 +6,8 @@
 // linear elasticity, without and with the stabilisation of the cells' own
 // volume change (weight 0.05). The explicit method's force kernel
 // (NodalAveraging::forces()) gives the Newton residual's forces, and the
-// same plastic strains, to round-off from a committed plastic state.
+// same plastic strains, to round-off from a committed plastic state, and
+// the same to the last bit when it updates the states in place.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -174,6 +175,37 @@ namespace
       return residual;
     }
 
+    /// explicit_forces() with the states of @p states updated in place, as
+    /// the explicit method's steps do, and their corners filled after.
+    Vec
+    explicit_forces_in_place(const Vec                  &u,
+                             const Material             &material,
+                             std::vector<MaterialState> &states)
+    {
+      Vec ghosted(owned, relevant, MPI_COMM_WORLD);
+      ghosted = u;
+      AllValues values;
+      values.gather(ghosted);
+      Vec         residual(owned, MPI_COMM_WORLD);
+      LocalForces local;
+      local.start(residual);
+      const std::vector<std::shared_ptr<const Material>> materials = {
+        std::shared_ptr<const Material>(&material, [](const Material *) {})};
+      const bool        history = material.needs_history();
+      const std::string failure = averaging->forces(values,
+                                                    materials,
+                                                    history ? &states : nullptr,
+                                                    history ? &states : nullptr,
+                                                    local);
+      if (!failure.empty())
+        throw std::runtime_error(failure);
+      if (history)
+        averaging->fill_shared_corners(states);
+      local.finish(residual);
+      residual.compress(VectorOperation::add);
+      return residual;
+    }
+
     /// Plain internal forces (P(F) at the four points of each cell).
     Vec
     plain_forces(const Vec &u, const Material &material) const
@@ -330,6 +362,30 @@ namespace
       std::cerr << label << " explicit kernel difference " << error
                 << " plastic strain difference " << state_error << " of "
                 << eps_max << std::endl;
+
+      // the same step with the states updated in place: the same forces
+      // and, once the corners are filled, the same states at every corner
+      // of the owned cells, to the last bit
+      std::vector<MaterialState> states = block.committed;
+      Vec in_place = block.explicit_forces_in_place(u, material, states);
+      in_place -= kernel;
+      bool same_states = true;
+      for (const auto &cell : block.dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() && material.needs_history())
+          for (unsigned int v = 0; v < 4; ++v)
+            {
+              const std::size_t k = cell->active_cell_index() * 4 + v;
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  same_states = same_states && states[k].Cp_inv[i][j] ==
+                                                 block.trial[k].Cp_inv[i][j];
+              same_states =
+                same_states && states[k].eps_p == block.trial[k].eps_p;
+            }
+      same_states = Utilities::MPI::min(same_states ? 1 : 0, MPI_COMM_WORLD);
+      out() << "  explicit kernel in place = with separate states: "
+            << yes(in_place.linfty_norm() == 0. && same_states)
+            << " (forces and states identical)" << std::endl;
       block.committed.assign(block.committed.size(), MaterialState());
     }
   }

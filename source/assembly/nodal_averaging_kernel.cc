@@ -59,6 +59,21 @@ namespace densify
 
 
 
+  void
+  NodalAveraging::fill_shared_corners(std::vector<MaterialState> &states) const
+  {
+    for (const unsigned int e : owned_cells)
+      if (cells[e].material < shared_law.size() &&
+          shared_law[cells[e].material])
+        {
+          const std::size_t k0 = std::size_t(e) * 4;
+          for (unsigned int v = 1; v < 4; ++v)
+            states[k0 + v] = states[k0];
+        }
+  }
+
+
+
   std::string
   NodalAveraging::shared_deviators(
     const std::vector<std::shared_ptr<const Material>> &materials,
@@ -120,6 +135,10 @@ namespace densify
     TrilinosWrappers::SparseMatrix                     *tangent,
     const bool                                          shared_corners)
   {
+    // explicit steps update the states in place (see forces())
+    const bool in_place = trial != nullptr && trial == committed;
+    Assert(!(with_tangent && in_place),
+           ExcMessage("Newton needs the committed states kept"));
     // scatter the tangent's blocks through their placement in its pattern
     bool placed = false;
     if constexpr (with_tangent)
@@ -270,7 +289,8 @@ namespace densify
             // mapping, four pressures and one 3x3 product a cell.
             const std::size_t            k0      = std::size_t(e) * 4;
             const SymmetricTensor<2, 3> &tau_dev = cell_tau_dev[e];
-            if (trial)
+            // in place, fill_shared_corners() copies them when read
+            if (trial && !in_place)
               for (unsigned int v = 1; v < 4; ++v)
                 (*trial)[k0 + v] = (*trial)[k0];
             double p_corners = 0.;
@@ -346,6 +366,13 @@ namespace densify
                 MaterialState *now = trial ? &(*trial)[k] : nullptr;
                 if constexpr (with_tangent)
                   material.evaluate(F_bar, old, now, P, A);
+                else if (in_place)
+                  {
+                    // a law need not read and write one state
+                    MaterialState updated;
+                    material.stress(F_bar, old, &updated, P);
+                    *now = updated;
+                  }
                 else
                   material.stress(F_bar, old, now, P);
               }

@@ -209,8 +209,11 @@ namespace densify
                                           out.post->get_fe(),
                                           face_quadrature,
                                           update_values | update_JxW_values);
-    const std::vector<Point<3>> x_now =
-      plain ? current_vertices(*out.values) : current_vertices(solution);
+    std::vector<Point<3>> x_accessed;
+    if (!plain)
+      x_accessed = current_vertices(solution);
+    const std::vector<Point<3>> &x_now =
+      plain ? current_vertices(*out.values) : x_accessed;
     // the explicit pass searches each point's near list (the same facet as
     // all candidates give); a pass that assigns facets searches them all
     const bool use_lists =
@@ -223,20 +226,16 @@ namespace densify
       return !by_vertex || near.copy_start[idx] < near.copy_start[idx + 1];
     };
     std::vector<char> pressed(by_vertex ? slave_faces.size() * n_q : 0, 0);
-    // the slave facet's current over its reference area (flat)
+    // the slave facet's current over its reference area (flat), from the
+    // facet's own vertex indices and reference positions
     const auto area_ratio_of = [&](const Facet &slave) {
-      const auto vertex = [&](const unsigned int a) {
-        return slave.cell->vertex_index(slave.local_vertex[a]);
-      };
       const auto area = [](const Tensor<1, 3> &e1, const Tensor<1, 3> &e2) {
         return cross_product_3d(e1, e2).norm();
       };
-      return area(x_now[vertex(1)] - x_now[vertex(0)],
-                  x_now[vertex(2)] - x_now[vertex(0)]) /
-             area(slave.cell->vertex(slave.local_vertex[1]) -
-                    slave.cell->vertex(slave.local_vertex[0]),
-                  slave.cell->vertex(slave.local_vertex[2]) -
-                    slave.cell->vertex(slave.local_vertex[0]));
+      return area(x_now[slave.vertex[1]] - x_now[slave.vertex[0]],
+                  x_now[slave.vertex[2]] - x_now[slave.vertex[0]]) /
+             area(slave.position[1] - slave.position[0],
+                  slave.position[2] - slave.position[0]);
     };
     // the scalar shape functions of the base element behind each vector
     // one (the same values as fe.shape_value(), a third of the calls)
@@ -699,9 +698,11 @@ namespace densify
         if (std::any_of(pressed.begin() + k * n_q,
                         pressed.begin() + (k + 1) * n_q,
                         [](const char c) { return c != 0; }))
-          for (unsigned int q = 0; q < n_q; ++q)
-            result.contact_area +=
-              weight * area_ratio_of(facets[slave_faces[k]]) * tables.JxW(k, q);
+          {
+            const double ratio = area_ratio_of(facets[slave_faces[k]]);
+            for (unsigned int q = 0; q < n_q; ++q)
+              result.contact_area += weight * ratio * tables.JxW(k, q);
+          }
 
     // one reduction for the sums (the counts are exact in doubles)
     std::array<double, 8> sums{{result.normal_force,

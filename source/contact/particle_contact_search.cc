@@ -127,10 +127,11 @@ namespace densify
 
 
 
-  std::vector<Point<3>>
+  const std::vector<Point<3>> &
   ParticleContact::current_vertices(const AllValues &values) const
   {
-    std::vector<Point<3>> x(dof_handler->get_triangulation().n_vertices());
+    std::vector<Point<3>> &x = vertex_buffer;
+    x.resize(dof_handler->get_triangulation().n_vertices());
     for (const SurfaceVertex &vertex : surface_vertices)
       {
         Point<3> &y = x[vertex.index];

@@ -319,7 +319,7 @@ namespace densify
                                old[l] == &virgin ? nullptr : old[l],
                                trial ? trial[first + l] : nullptr,
                                *tau_dev[first + l]);
-          else if (trial && !plastic[l])
+          else if (trial && !plastic[l] && trial[first + l] != old[l])
             *trial[first + l] = *old[l];
       }
   }

@@ -61,7 +61,8 @@ namespace densify
 
     /// The trial history becomes the committed one (explicit dynamics: the
     /// two are swapped, the trial states are all written anew at the next
-    /// assembly).
+    /// assembly; nothing to do where the explicit force path updated the
+    /// committed states in place).
     void
     commit(const AssemblyContext &context) override;
 
@@ -84,6 +85,7 @@ namespace densify
     const std::vector<MaterialState> &
     committed() const
     {
+      fill_corners();
       return committed_history;
     }
 
@@ -126,6 +128,20 @@ namespace densify
     const unsigned int                                 degree;
     bool                                               history  = false;
     unsigned int                                       per_cell = 0;
-    std::vector<MaterialState> committed_history, trial_history;
+    /// The committed states; an explicit step of the F-bar's force path
+    /// updates them in place (each step is accepted), and a cell whose
+    /// corners share the deviator at its first corner only, so the other
+    /// corners are filled before anything reads them (fill_corners()).
+    mutable std::vector<MaterialState> committed_history;
+    std::vector<MaterialState>         trial_history;
+    /// Did the last assembly update the committed states in place?
+    bool in_place = false;
+    /// Do corners of the committed states wait for fill_corners()?
+    mutable bool corners_pending = false;
+
+    /// Copy the first corner's state to the others where an in-place
+    /// update left them behind (NodalAveraging::fill_shared_corners()).
+    void
+    fill_corners() const;
   };
 } // namespace densify

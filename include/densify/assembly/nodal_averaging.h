@@ -127,6 +127,11 @@ namespace densify
      * forces as assemble() with a tangent to round-off
      * (tests/nodal_averaging_consistency.cc). Returns an empty string or the
      * message of the first material failure, as assemble().
+     *
+     * @p trial may be @p committed (explicit steps, each accepted): the
+     * states are then updated in place, and a cell whose corners share the
+     * deviator writes its first corner only; fill_shared_corners() copies
+     * it to the other three before the states are read.
      */
     std::string
     forces(const AllValues                                    &solution,
@@ -134,6 +139,14 @@ namespace densify
            const std::vector<MaterialState>                   *committed,
            std::vector<MaterialState>                         *trial,
            LocalForces                                        &residual);
+
+    /**
+     * Copy the first corner's state of each owned cell whose corners share
+     * the deviator in the last forces() call to its other three corners
+     * (after forces() updated @p states in place).
+     */
+    void
+    fill_shared_corners(std::vector<MaterialState> &states) const;
 
     /**
      * The vertex averages j_a = sum_f V_f j_f / sum_f V_f of the volume

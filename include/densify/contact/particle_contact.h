@@ -297,8 +297,11 @@ namespace densify
     std::vector<Point<3>>
     current_vertices(const TrilinosWrappers::MPI::Vector &solution) const;
 
-    /// current_vertices() from the plain array @p values.
-    std::vector<Point<3>>
+    /// current_vertices() from the plain array @p values, written into a
+    /// buffer the class keeps (the explicit steps' passes: no array of all
+    /// vertices allocated and cleared a step; only the surface vertices'
+    /// entries are meaningful).
+    const std::vector<Point<3>> &
     current_vertices(const AllValues &values) const;
 
     /// A vertex of the surface facets: its index, reference position and
@@ -372,6 +375,8 @@ namespace densify
     /// The slave faces' quadrature data for the explicit pass on plain
     /// arrays; made at its first use (the mapping comes with the pass).
     mutable FaceTables tables;
+    /// current_vertices()'s buffer of the explicit passes.
+    mutable std::vector<Point<3>> vertex_buffer;
     /// The slave faces (boundary faces of locally owned cells): facet index.
     std::vector<unsigned int> slave_faces;
     /// Candidate master facets of each slave face (CSR).

@@ -138,6 +138,8 @@ namespace densify
      * history decide, and the updated state @p trial, without the first
      * Piola-Kirchhoff stress or the tangent (the explicit force kernel,
      * NodalAveraging::forces()); returns true. Other laws return false.
+     * @p trial may be @p committed (the explicit kernel updates its states
+     * in place): a law reads the committed state before it writes.
      */
     virtual bool
     kirchhoff_deviator(const Tensor<2, 3> & /*F*/,
