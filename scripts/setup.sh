@@ -8,6 +8,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 packages=(libdeal.ii-dev libmumps-dev g++ make cmake numdiff openmpi-bin
           python3-numpy python3-matplotlib python3-vtk9 xvfb xauth  # scripts/postprocess
           time  # /usr/bin/time in benchmarks/scene_speed.sh
+          bc  # arithmetic of benchmarks/explicit_vs_implicit.sh
           liggghts  # the DEM die fill of scripts/packing/liggghts_fill.sh (test cli.liggghts_fill)
           libopenblas0-serial)  # optimised BLAS/LAPACK for MUMPS (2-4x faster factorizations)
 missing=()
