@@ -148,10 +148,13 @@ namespace
     }
 
     /// Internal forces by the explicit method's kernel,
-    /// NodalAveraging::forces(), on plain arrays (the trial states into
-    /// trial).
+    /// NodalAveraging::forces(), on plain arrays: the trial states into
+    /// trial, or with @p in_place the states of *in_place updated in place,
+    /// as the explicit method's steps do, and their corners filled after.
     Vec
-    explicit_forces(const Vec &u, const Material &material)
+    explicit_forces(const Vec                  &u,
+                    const Material             &material,
+                    std::vector<MaterialState> *in_place = nullptr)
     {
       Vec ghosted(owned, relevant, MPI_COMM_WORLD);
       ghosted = u;
@@ -162,45 +165,18 @@ namespace
       local.start(residual);
       const std::vector<std::shared_ptr<const Material>> materials = {
         std::shared_ptr<const Material>(&material, [](const Material *) {})};
-      const std::string failure =
-        averaging->forces(values,
-                          materials,
-                          material.needs_history() ? &committed : nullptr,
-                          material.needs_history() ? &trial : nullptr,
-                          local);
-      if (!failure.empty())
-        throw std::runtime_error(failure);
-      local.finish(residual);
-      residual.compress(VectorOperation::add);
-      return residual;
-    }
-
-    /// explicit_forces() with the states of @p states updated in place, as
-    /// the explicit method's steps do, and their corners filled after.
-    Vec
-    explicit_forces_in_place(const Vec                  &u,
-                             const Material             &material,
-                             std::vector<MaterialState> &states)
-    {
-      Vec ghosted(owned, relevant, MPI_COMM_WORLD);
-      ghosted = u;
-      AllValues values;
-      values.gather(ghosted);
-      Vec         residual(owned, MPI_COMM_WORLD);
-      LocalForces local;
-      local.start(residual);
-      const std::vector<std::shared_ptr<const Material>> materials = {
-        std::shared_ptr<const Material>(&material, [](const Material *) {})};
-      const bool        history = material.needs_history();
-      const std::string failure = averaging->forces(values,
+      const bool                  history = material.needs_history();
+      std::vector<MaterialState> *old     = in_place ? in_place : &committed;
+      std::vector<MaterialState> *now     = in_place ? in_place : &trial;
+      const std::string           failure = averaging->forces(values,
                                                     materials,
-                                                    history ? &states : nullptr,
-                                                    history ? &states : nullptr,
+                                                    history ? old : nullptr,
+                                                    history ? now : nullptr,
                                                     local);
       if (!failure.empty())
         throw std::runtime_error(failure);
-      if (history)
-        averaging->fill_shared_corners(states);
+      if (history && in_place)
+        averaging->fill_shared_corners(*in_place);
       local.finish(residual);
       residual.compress(VectorOperation::add);
       return residual;
@@ -367,7 +343,7 @@ namespace
       // and, once the corners are filled, the same states at every corner
       // of the owned cells, to the last bit
       std::vector<MaterialState> states = block.committed;
-      Vec in_place = block.explicit_forces_in_place(u, material, states);
+      Vec in_place = block.explicit_forces(u, material, &states);
       in_place -= kernel;
       bool same_states = true;
       for (const auto &cell : block.dof_handler.active_cell_iterators())
