@@ -917,6 +917,19 @@ namespace densify
           "' is neither 'auto' nor a number from 1e-6 to 100; give e.g. 1 or "
           "auto");
     }
+    for (const auto &[t, f] :
+         parse_table(parameters.explicit_dynamics.step_profile,
+                     "Explicit/Step profile"))
+      if (!(f > 0. && f <= 1.))
+        {
+          std::ostringstream message;
+          message << "Explicit/Step profile = '"
+                  << parameters.explicit_dynamics.step_profile
+                  << "': the factor " << f << " at " << t
+                  << " s is not in (0, 1]; give factors above 0 and at most "
+                     "1, e.g. '0:1, 0.78:1, 0.8:0.4'";
+          throw std::runtime_error(message.str());
+        }
     if (Utilities::trim(parameters.output.directory).empty())
       throw std::runtime_error(
         "Output/Directory is empty: give a directory for the results, e.g. "

@@ -197,6 +197,20 @@ namespace densify
         "takes about a third of them instead of a fifth. 1: constant rate.",
         Patterns::Double(0.01, 1.));
       prm.add_parameter(
+        "Step profile",
+        explicit_dynamics.step_profile,
+        "Where mass scaling sets the step: the target step (Loading time / "
+        "Number of steps) times a factor, piecewise linear in the scene "
+        "time, as 'time:factor' pairs (time in s as Time stepping/End time, "
+        "factor 0 < f <= 1; constant beyond the first and last time). Each "
+        "station's step is the target at its end time. A factor f < 1 takes "
+        "1/f times the steps there and scales the mass by f^2, so less "
+        "inertia: for the dense end of a compaction, where cells meet Mesh/"
+        "Cell volume barrier and the force rises steepest, e.g. '0:1, "
+        "0.78:1, 0.8:0.4' where Time stepping/End time is 0.8. 0:1: the "
+        "target step throughout.",
+        Patterns::Anything());
+      prm.add_parameter(
         "Damping ratio",
         explicit_dynamics.damping_ratio,
         "Mass-proportional damping, as a fraction of the critical damping of "

@@ -581,8 +581,18 @@ namespace densify
           << " mm above Contact/Gap tolerance = " << prm.contact.gap_tolerance
           << " mm at step " << s.step
           << " (printed once; statistics.csv has max_penetration of every "
-             "step): raise Explicit/Contact multiplier steps from "
-          << prm.explicit_dynamics.multiplier_steps
-          << " (e.g. 200) or Explicit/Contact stiffness" << std::endl;
+             "step): ";
+    // the multipliers remove a lasting penetration over about their number
+    // of steps, not a passing one
+    if (prm.explicit_dynamics.multiplier_steps == 0)
+      pcout << "raise Explicit/Contact multiplier steps from 0 (e.g. 200) or "
+               "Explicit/Contact stiffness";
+    else
+      pcout << "raise Explicit/Contact stiffness (Explicit/Contact multiplier "
+               "steps = "
+            << prm.explicit_dynamics.multiplier_steps
+            << " removes a lasting penetration over about as many explicit "
+               "steps)";
+    pcout << std::endl;
   }
 } // namespace densify

@@ -268,6 +268,9 @@ namespace densify
     /// Punch speed at the end of the load history as a fraction of its
     /// speed after the ramp; it falls linearly with scene time in between.
     double end_speed_fraction = 1.;
+    /// The target step's factor against the scene time, "t:factor, ...",
+    /// piecewise linear (factors in (0, 1]).
+    std::string step_profile = "0:1";
     /// Mass-proportional damping as a fraction of the critical damping of
     /// a particle's lowest compression mode.
     double damping_ratio = 0.;

@@ -177,6 +177,16 @@ namespace densify
       }
     if (scaling != MassScaling::none && required_step > 0.)
       {
+        // another required step (Explicit/Step profile): the factors it
+        // needs follow as its square
+        if (factor_step > 0. && required_step != factor_step)
+          {
+            const double s =
+              (required_step / factor_step) * (required_step / factor_step);
+            for (const OwnedCell &c : owned_cells)
+              factor[c.index] = std::max(1., factor[c.index] * s);
+          }
+        factor_step = required_step;
         // each cell's stable step needs to reach required_step * share,
         // the calibrated bound's
         const double target =

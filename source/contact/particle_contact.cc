@@ -290,6 +290,7 @@ namespace densify
         // whether one of the facet's points carries a pressure
         bool face_in_contact = false;
         bool face_evaluated  = false;
+        bool old_pending     = false;
         for (unsigned int q = 0; q < n_q; ++q)
           face_evaluated = face_evaluated || evaluated(k * n_q + q);
         if (begin < end && face_evaluated)
@@ -297,8 +298,9 @@ namespace densify
             if (plain)
               {
                 tables.values(k, *out.values, u_values);
-                if (friction_on)
-                  tables.values(k, *out.committed_values, u_old);
+                // the committed values once a point of the face is evaluated
+                // in full (below)
+                old_pending = friction_on;
                 std::copy(tables.dofs(k),
                           tables.dofs(k) + n_dofs,
                           pair_dofs.begin());
@@ -394,6 +396,25 @@ namespace densify
                       (*out.new_assignment)[idx] = best.facet;
                   }
                 const Facet &master = facets[best.facet];
+                if (plain && base.degree == 1 && out.matrix == nullptr &&
+                    post_face == nullptr)
+                  {
+                    // linear: the master point is the facet's corners at
+                    // the projection, so the gap below follows from them
+                    // alone; a point open by more than round-off gives no
+                    // force, no pressure and no traction (the outputs arrive
+                    // zeroed), and the rest of its evaluation is skipped
+                    const Tensor<1, 3> off =
+                      x_s - (best.bary[0] * x_now[master.vertex[0]] +
+                             best.bary[1] * x_now[master.vertex[1]] +
+                             best.bary[2] * x_now[master.vertex[2]]);
+                    const Tensor<1, 3> &n = best.normal;
+                    const double g   = off * n + (off - (off * n) * n).norm();
+                    const double eps = std::min(penalty[slave.particle],
+                                                penalty[master.particle]);
+                    if (g > lambda[idx] / eps + 1e-12 * (1. + x_s.norm()))
+                      continue;
+                  }
                 // master point and displacement by the master's shape
                 // functions at the projection
                 Point<3> xi;
@@ -427,6 +448,11 @@ namespace densify
                     master_phi[i] =
                       plain ? base_phi[base_index[i]] : fe.shape_value(i, xi);
                     u_m[component[i]] += master_u(i) * master_phi[i];
+                  }
+                if (old_pending)
+                  {
+                    tables.values(k, *out.committed_values, u_old);
+                    old_pending = false;
                   }
                 if (friction_on)
                   {

@@ -598,19 +598,9 @@ namespace densify
             double             curvature;
             const double       g   = tool_list[t].gap(x, n, curvature);
             const unsigned int idx = *first * n_tools + t;
+            // open: no pressure, no traction (the outputs arrive zeroed)
             if (g > lambda[idx] / eps)
-              {
-                // open: no pressure, no traction
-                for (const unsigned int *c = first; c != last; ++c)
-                  {
-                    if (out.new_lambda != nullptr)
-                      (*out.new_lambda)[*c * n_tools + t] = 0.;
-                    if (out.new_traction != nullptr && friction_on &&
-                        friction_laws[t].mu > 0.)
-                      (*out.new_traction)[*c * n_tools + t] = Tensor<1, 3>();
-                  }
-                continue;
-              }
+              continue;
             Tensor<1, 3>          delta;
             const ContactResponse r =
               respond(idx, t, g, eps, n, u - u_old, delta);

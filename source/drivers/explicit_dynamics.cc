@@ -17,6 +17,7 @@ namespace densify
     : prm(prm)
     , scene_end(scene_end_time)
     , comm(comm)
+    , step_profile(parse_table(prm.step_profile, "Explicit/Step profile"))
   {}
 
 
@@ -147,8 +148,9 @@ namespace densify
                           const TrilinosWrappers::MPI::Vector &u,
                           const bool                           scaled_mass)
   {
-    scaled      = scaled_mass;
-    target_step = prm.loading_time / prm.n_steps;
+    scaled = scaled_mass;
+    target_step =
+      prm.loading_time / prm.n_steps * interpolate(step_profile, 0.);
     renew_mass(system);
     velocity.reinit(mass);
     r_internal.reinit(mass);
@@ -169,6 +171,9 @@ namespace densify
                             TrilinosWrappers::MPI::Vector &u,
                             const double                   target)
   {
+    // the station's step: the target at its end (Explicit/Step profile)
+    target_step =
+      prm.loading_time / prm.n_steps * interpolate(step_profile, target);
     renew_mass(system);
     const double       t_end = physical_time(target);
     const unsigned int n =

@@ -9,9 +9,13 @@
 # - Explicit/End speed fraction = 0.5: the stations take the explicit steps
 #   the slowing-down map gives them (the last station about 1.7 times the
 #   second) and the punch force stays within 2 % of the implicit one;
+# - Explicit/Step profile = 0:1, 0.6:1, 0.7:0.5: the stations ending at
+#   0.7 and 0.8 s take twice the explicit steps of the one before, at half
+#   its step and with a quarter of its scaled mass, and the punch force
+#   stays within 2 % of the implicit one;
 # - 2 MPI ranks give the same statistics as 1 (to 1e-6) on the first steps.
 # Each run is a part of its own (tests/cli/lib/parts.bash).
-# ctest parts: explicit_8000 implicit explicit_4000 slowing ranks_1 ranks_2:2
+# ctest parts: explicit_8000 implicit explicit_4000 slowing profile ranks_1 ranks_2:2
 set -eu
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/parts.bash"
@@ -27,6 +31,7 @@ part implicit &&
     { tail -n 3 implicit.log; exit 1; }; }
 part explicit_4000 && explicit_run explicit_4000 4000
 part slowing && explicit_run slowing 2000 --set "Explicit/End speed fraction=0.5"
+part profile && explicit_run profile 2000 --set "Explicit/Step profile=0:1, 0.6:1, 0.7:0.5"
 # 1 and 2 ranks on the first two steps
 for np in 1 2; do
   part ranks_$np || continue
@@ -72,6 +77,27 @@ print("End speed fraction 0.5: F_upper %.2f N (%+.2f %%), KE/IE %.2g %%"
       % (F(r), 100 * (F(r) / F(im) - 1),
          100 * float(r["kinetic_energy"]) / float(r["internal_work"])))
 assert abs(F(r) / F(im) - 1) < 0.02, "punch force, slowing down"
+
+# the step profile: the stations ending at 0.7 and 0.8 s at half the step
+text = open("profile.log").read()
+steps = [int(m) for m in re.findall(r"explicit (\d+) steps", text)]
+dts = [float(m) for m in re.findall(r"\(dt ([0-9.e+-]+) s\)", text)]
+assert len(steps) == 8 and len(dts) == 8, (steps, dts)
+print("Step profile 0:1, 0.6:1, 0.7:0.5: explicit steps per station %s, "
+      "steps %s" % (steps, dts))
+for k in (6, 7):
+    assert abs(steps[k] / steps[5] / 2 - 1) < 0.02, "steps at half the step"
+    assert dts[k] / dts[5] < 0.51, "half the step"
+# and a quarter of the scaled mass (the cells flatten a little meanwhile)
+rows = list(csv.DictReader(open("profile/statistics.csv")))
+added = [float(r["added_mass"]) for r in rows]
+print("Step profile: added mass at the last three stations %s"
+      % ["%.4g" % a for a in added[5:]])
+assert added[6] / added[5] < 0.26, "a quarter of the mass at half the step"
+r = last("profile")
+print("Step profile: F_upper %.2f N (%+.2f %%)"
+      % (F(r), 100 * (F(r) / F(im) - 1)))
+assert abs(F(r) / F(im) - 1) < 0.02, "punch force, step profile"
 PY
 cut -d, -f1-7,15,25-40 ranks_1/statistics.csv > a.csv
 cut -d, -f1-7,15,25-40 ranks_2/statistics.csv > b.csv

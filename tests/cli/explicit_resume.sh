@@ -4,7 +4,8 @@
 # (velocities, the friction and plastic history, the mass-scaling factors
 # and the energy account are in the checkpoint); and --resume refuses a
 # checkpoint of the other method, but accepts a lower Explicit/Time step
-# safety.
+# safety. The same with Explicit/Step profile stopped where its factor is
+# 0.5 (the mass factors restored for that station's step).
 set -eu
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/shrunk_light_scene.bash"
@@ -24,6 +25,19 @@ cut -d, -f1-9,11-15,17- pieces/statistics.csv > b.csv
 "$NUMDIFF" -q -r 1e-9 -a 1e-12 -s ', \n' a.csv b.csv
 "$NUMDIFF" -q -r 1e-9 -a 1e-12 -s ', \n' whole/particles.csv pieces/particles.csv
 echo "stopped and resumed explicit run = uninterrupted run (1e-9): yes"
+profile=(--set "Explicit/Step profile=0:1, 0.2:1, 0.4:0.5")
+"$DENSIFY" "$scene" "${common[@]}" "${explicit[@]}" "${profile[@]}" \
+  --set "Output/Directory=whole_profile" > whole_profile.log 2>&1
+rc=0
+"$DENSIFY" "$scene" "${common[@]}" "${explicit[@]}" "${profile[@]}" \
+  --set "Output/Directory=pieces_profile" --stop-after 3 > pieces_profile.log 2>&1 || rc=$?
+[ $rc -eq 3 ] || { echo "expected exit 3, got $rc"; exit 1; }
+"$DENSIFY" "$scene" "${common[@]}" "${explicit[@]}" "${profile[@]}" \
+  --set "Output/Directory=pieces_profile" --resume > resumed_profile.log 2>&1
+cut -d, -f1-9,11-15,17- whole_profile/statistics.csv > a.csv
+cut -d, -f1-9,11-15,17- pieces_profile/statistics.csv > b.csv
+"$NUMDIFF" -q -r 1e-9 -a 1e-12 -s ', \n' a.csv b.csv
+echo "the same with Explicit/Step profile, stopped at its factor 0.5: yes"
 # the checkpoint of an explicit run is refused by an implicit one
 rc=0
 err=$("$DENSIFY" "$scene" "${common[@]}" --set "Time stepping/Number of steps=6" \

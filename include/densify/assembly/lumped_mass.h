@@ -10,6 +10,7 @@
 #include <densify/assembly/cell_volume_barrier.h>
 #include <densify/material/material.h>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -68,10 +69,13 @@ namespace densify
     /**
      * At displacement @p u (with the values of every DoF of the locally
      * owned cells) recompute each cell's stable step and, with mass scaling,
-     * raise the scaling factors (never lower them) so that the stable step
-     * of the whole mesh with its contact springs is at least
-     * @p required_step; then write the lumped mass into @p mass (locally
-     * owned entries). Returns the stable step (s).
+     * raise the scaling factors (never lower them while @p required_step
+     * stays) so that the stable step of the whole mesh with its contact
+     * springs is at least @p required_step; then write the lumped mass into
+     * @p mass (locally owned entries). Returns the stable step (s). A
+     * @p required_step other than the last one first scales every factor by
+     * the square of their ratio (at least 1): the mass a step needs goes
+     * with its square (Explicit/Step profile).
      */
     double
     update(const TrilinosWrappers::MPI::Vector &u,
@@ -178,11 +182,19 @@ namespace densify
       volume_barrier = barrier;
     }
 
-    /// Restore factors saved from scaling_factors() (same mesh).
+    /// Restore factors saved from scaling_factors() (same mesh), raised for
+    /// the required step @p required_step (s) of update(), whose lumped mass
+    /// was @p mass (the locally owned entries): the next update() takes the
+    /// contact springs' share from it.
     void
-    set_scaling_factors(const std::vector<double> &saved)
+    set_scaling_factors(const std::vector<double> &saved,
+                        const double               required_step,
+                        const std::vector<double> &mass)
     {
-      factor = saved;
+      factor      = saved;
+      factor_step = required_step;
+      if (last_mass.locally_owned_size() == mass.size())
+        std::copy(mass.begin(), mass.end(), last_mass.begin());
     }
 
   private:
@@ -197,6 +209,8 @@ namespace densify
     const MassScaling scaling;
     /// max(1, tangential / normal penalty).
     const double spring_ratio;
+    /// The required step the factors were last raised for (s; 0: none).
+    double factor_step = 0.;
     /// Per active cell: mass-scaling factor, and the stable step with
     /// factor 1 at the last update.
     std::vector<double> factor, step_unscaled;

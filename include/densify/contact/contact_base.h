@@ -51,9 +51,12 @@ namespace densify
     TrilinosWrappers::MPI::Vector  *residual       = nullptr;
     TrilinosWrappers::SparseMatrix *matrix         = nullptr;
     double                          tangent_margin = 0.;
-    std::vector<double>            *new_lambda     = nullptr;
-    std::vector<Tensor<1, 3>>      *new_traction   = nullptr;
-    std::vector<double>            *new_slip       = nullptr;
+    /// Where a pass writes each contact point's new multiplier and
+    /// traction, or null. Both arrive zeroed; a point that is open may be
+    /// left unwritten.
+    std::vector<double>       *new_lambda   = nullptr;
+    std::vector<Tensor<1, 3>> *new_traction = nullptr;
+    std::vector<double>       *new_slip     = nullptr;
     /// Explicit dynamics: the solution and the committed solution as plain
     /// arrays, read instead of the vectors, and where the forces go instead
     /// of @p residual (all three or none).

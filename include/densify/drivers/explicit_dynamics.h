@@ -191,14 +191,16 @@ namespace densify
     std::string
     remedy() const;
 
-    const ExplicitParameters      prm;
-    const double                  scene_end;
-    const MPI_Comm                comm;
-    double                        damping     = 0.;
-    bool                          scaled      = true;
-    double                        target_step = 0., step = 0., stable = 0.;
-    double                        time = 0., last_step = 0.;
-    unsigned long long            n_steps = 0;
+    const ExplicitParameters prm;
+    const double             scene_end;
+    const MPI_Comm           comm;
+    double                   damping     = 0.;
+    bool                     scaled      = true;
+    double                   target_step = 0., step = 0., stable = 0.;
+    /// Explicit/Step profile: the target step's factor against scene time.
+    std::vector<std::pair<double, double>> step_profile;
+    double                                 time = 0., last_step = 0.;
+    unsigned long long                     n_steps = 0;
     TrilinosWrappers::MPI::Vector mass, inverse_mass, velocity, r_internal,
       r_external, previous_u;
     /// Energy sums so far (this rank's part of the work; kinetic global).
