@@ -581,14 +581,11 @@ namespace densify
         // the factors were raised for the step of the station ending at
         // the checkpoint (Explicit/Step profile)
         if (same_steps)
-          lumped_mass->set_scaling_factors(
-            factors,
-            prm.explicit_dynamics.loading_time / prm.explicit_dynamics.n_steps *
-              interpolate(parse_table(prm.explicit_dynamics.step_profile,
-                                      "Explicit/Step profile"),
-                          current_time) /
-              prm.explicit_dynamics.safety,
-            dynamics.mass);
+          lumped_mass->set_scaling_factors(factors,
+                                           explicit_dynamics->target_step_at(
+                                             current_time) /
+                                             prm.explicit_dynamics.safety,
+                                           dynamics.mass);
         else
           pcout << "Explicit/Number of steps " << prm.explicit_dynamics.n_steps
                 << " (the checkpoint's: " << n_explicit

@@ -395,26 +395,26 @@ namespace densify
                     if (out.new_assignment != nullptr)
                       (*out.new_assignment)[idx] = best.facet;
                   }
-                const Facet &master = facets[best.facet];
+                const Facet        &master = facets[best.facet];
+                const Tensor<1, 3> &n      = best.normal;
+                // the point's offset from its projection on the facet's
+                // current corners
+                const Tensor<1, 3> off =
+                  x_s - (best.bary[0] * x_now[master.vertex[0]] +
+                         best.bary[1] * x_now[master.vertex[1]] +
+                         best.bary[2] * x_now[master.vertex[2]]);
+                const double eps =
+                  std::min(penalty[slave.particle], penalty[master.particle]);
+                // linear: the master point is those corners at the
+                // projection, so the gap below follows from the offset
+                // alone; a point open by more than round-off gives no
+                // force, no pressure and no traction (the outputs arrive
+                // zeroed), and the rest of its evaluation is skipped
                 if (plain && base.degree == 1 && out.matrix == nullptr &&
-                    post_face == nullptr)
-                  {
-                    // linear: the master point is the facet's corners at
-                    // the projection, so the gap below follows from them
-                    // alone; a point open by more than round-off gives no
-                    // force, no pressure and no traction (the outputs arrive
-                    // zeroed), and the rest of its evaluation is skipped
-                    const Tensor<1, 3> off =
-                      x_s - (best.bary[0] * x_now[master.vertex[0]] +
-                             best.bary[1] * x_now[master.vertex[1]] +
-                             best.bary[2] * x_now[master.vertex[2]]);
-                    const Tensor<1, 3> &n = best.normal;
-                    const double g   = off * n + (off - (off * n) * n).norm();
-                    const double eps = std::min(penalty[slave.particle],
-                                                penalty[master.particle]);
-                    if (g > lambda[idx] / eps + 1e-12 * (1. + x_s.norm()))
-                      continue;
-                  }
+                    post_face == nullptr &&
+                    off * n + (off - (off * n) * n).norm() >
+                      lambda[idx] / eps + 1e-12 * (1. + x_s.norm()))
+                  continue;
                 // master point and displacement by the master's shape
                 // functions at the projection
                 Point<3> xi;
@@ -465,21 +465,14 @@ namespace densify
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       u_m_old[component[i]] += master_old(i) * master_phi[i];
                   }
-                const Tensor<1, 3> &n = best.normal;
                 // the normal gap, plus how far the point lies beside the
                 // (enlarged) facet: a point beyond the facet's edges, for
                 // example in the plane of a neighbour's facet flattened
                 // against the same punch, is not in contact with it. Zero for
                 // every point that projects into the facet, and continuous
                 // in the displacement (doc/theory.md section 9)
-                const Tensor<1, 3> off =
-                  x_s - (best.bary[0] * x_now[master.vertex[0]] +
-                         best.bary[1] * x_now[master.vertex[1]] +
-                         best.bary[2] * x_now[master.vertex[2]]);
                 const double g =
                   (x_s - (X_m + u_m)) * n + (off - (off * n) * n).norm();
-                const double eps =
-                  std::min(penalty[slave.particle], penalty[master.particle]);
                 const Tensor<1, 3> delta =
                   friction_on ?
                     Tensor<1, 3>((u_values[q] - u_old[q]) - (u_m - u_m_old)) :

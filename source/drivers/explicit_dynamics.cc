@@ -115,6 +115,15 @@ namespace densify
 
 
 
+  double
+  ExplicitDynamics::target_step_at(const double scene_time) const
+  {
+    return prm.loading_time / prm.n_steps *
+           interpolate(step_profile, scene_time);
+  }
+
+
+
   void
   ExplicitDynamics::renew_mass(ExplicitSystem &system)
   {
@@ -148,9 +157,8 @@ namespace densify
                           const TrilinosWrappers::MPI::Vector &u,
                           const bool                           scaled_mass)
   {
-    scaled = scaled_mass;
-    target_step =
-      prm.loading_time / prm.n_steps * interpolate(step_profile, 0.);
+    scaled      = scaled_mass;
+    target_step = target_step_at(0.);
     renew_mass(system);
     velocity.reinit(mass);
     r_internal.reinit(mass);
@@ -171,9 +179,7 @@ namespace densify
                             TrilinosWrappers::MPI::Vector &u,
                             const double                   target)
   {
-    // the station's step: the target at its end (Explicit/Step profile)
-    target_step =
-      prm.loading_time / prm.n_steps * interpolate(step_profile, target);
+    target_step = target_step_at(target);
     renew_mass(system);
     const double       t_end = physical_time(target);
     const unsigned int n =

@@ -167,6 +167,12 @@ namespace densify
             TrilinosWrappers::MPI::Vector &u,
             const double                   scene_time);
 
+    /// The target step (s) of the station ending at scene time
+    /// @p scene_time: Loading time / Number of steps times Explicit/Step
+    /// profile there.
+    double
+    target_step_at(const double scene_time) const;
+
     /// Scene time at physical time @p t.
     double
     scene_time(const double t) const;
