@@ -27,13 +27,15 @@ namespace densify
         "cg-amg: Trilinos CG preconditioned by ML algebraic multigrid with "
         "the six rigid-body modes (scales to large problems); gmres-amg: "
         "the same with GMRES, for nonsymmetric tangents (Contact/Friction "
-        "tangent = consistent); direct: MUMPS (a few thousand unknowns); "
+        "tangent = auto, consistent or secant-start); direct: MUMPS (a few "
+        "thousand unknowns); "
         "gmres-lu: GMRES preconditioned by the MUMPS factorization of an "
         "earlier tangent, factorized anew when GMRES needs more than 20 "
         "iterations, which saves factorizations where the tangent changes "
         "little (the paper's scenes); auto: gmres-amg where friction acts with "
-        "the consistent tangent or where Contact/Geometric tangent = true, "
-        "cg-amg otherwise.",
+        "a tangent that keeps its pressure coupling (Contact/Friction tangent "
+        "= auto, consistent or secant-start) or where Contact/Geometric "
+        "tangent = true, cg-amg otherwise.",
         Patterns::Selection("auto|cg-amg|gmres-amg|direct|gmres-lu"));
       prm.add_parameter("Linear tolerance",
                         solver.linear_tolerance,

@@ -1,6 +1,6 @@
 # Solver/Line search = energy (the step where R(u + s du).du has fallen to
-# half its size at s = 0, doc/theory.md) reaches the converged states of the
-# default residual search, on 1 and 2 ranks: both stop at the same Newton
+# half its size at s = 0, doc/theory.md; the default) reaches the converged
+# states of the residual search, on 1 and 2 ranks: both stop at the same Newton
 # tolerance, so the load path must agree to far below that path's own
 # accuracy. The light paper scene (seven J2 tin spheres, friction 0.2)
 # shrunk to 0.24 mm of stroke in 8 steps; what the energy search saves is
