@@ -7,7 +7,7 @@
 #   bash benchmarks/compare_builds.sh OLD_EXECUTABLE NEW_EXECUTABLE [RUN_DIR]
 # RUN_DIR: an output directory of prm/single_layer_sn.prm on 2 ranks whose
 # checkpoint/ is the one after step 200 (the late window is skipped without
-# it). doc/performance.md, "Assembly kernels and contact search".
+# it). doc/performance.md, "Comparing two builds".
 set -eu
 [ $# -ge 2 ] || { echo "usage: compare_builds.sh OLD NEW [RUN_DIR]"; exit 2; }
 root=$(cd "$(dirname "$0")/.." && pwd)

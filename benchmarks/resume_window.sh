@@ -10,7 +10,7 @@
 #   bash benchmarks/resume_window.sh OLD NEW RUN_DIR SCENE [STATIONS] [RANKS] [RUNS] [OPTIONS...]
 # defaults: 8 stations, 2 ranks, 1 run; OPTIONS (e.g. --set ...) are those
 # the run was started with. Run it alone on the machine.
-# doc/performance.md, "A powder bed of 200 particles".
+# doc/performance.md, "Comparing two builds".
 set -eu
 [ $# -ge 4 ] || {
   echo "usage: resume_window.sh OLD NEW RUN_DIR SCENE [STATIONS] [RANKS] [RUNS]"
