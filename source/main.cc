@@ -257,6 +257,7 @@ main(int argc, char **argv)
 
   std::string summary;
   Scene       scene;
+  Effects     effects;
   try
     {
       read_parameters(prm, filename, overrides, &parameters.fidelity_summary);
@@ -264,7 +265,7 @@ main(int argc, char **argv)
       parameters.fingerprint = parameter_fingerprint(prm);
       scene                  = build_scene(parameters);
       // options that do not fit together are input errors too
-      resolve_effects(parameters, scene);
+      effects = resolve_effects(parameters, scene);
       check_element_size(parameters, scene.particles);
       const MeshEstimate estimate = estimate_mesh(parameters, scene.particles);
       check_mesh_size(parameters, estimate);
@@ -324,8 +325,8 @@ main(int argc, char **argv)
     {
       simulator =
         std::make_unique<Simulator>(parameters, MPI_COMM_WORLD, true, control);
-      // the scene checked above, not built again
-      simulator->set_scene(std::move(scene));
+      // the scene and its effects checked above, not built again
+      simulator->set_scene(std::move(scene), effects);
       finished = simulator->run();
     }
   catch (const InputError &e)

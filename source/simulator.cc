@@ -1,5 +1,5 @@
-// The Simulator: mesh, DoFs, the force terms of the scene's effects, and the
-// run's load steps with their statistics and output.
+// The Simulator: builds the multi-body system and the driver of its method,
+// and runs the load steps with their statistics and output.
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 
@@ -34,25 +34,6 @@
 
 namespace densify
 {
-  namespace
-  {
-    /// The points where contact is evaluated on a reference surface triangle:
-    /// the corners with weights area/3 (node to surface) or the Gauss points
-    /// of degree + 1.
-    Quadrature<2>
-    contact_quadrature(const ContactPoints points, const unsigned int degree)
-    {
-      if (points == ContactPoints::vertices)
-        return Quadrature<2>(std::vector<Point<2>>{Point<2>(0, 0),
-                                                   Point<2>(1, 0),
-                                                   Point<2>(0, 1)},
-                             std::vector<double>(3, 1. / 6.));
-      return QGaussSimplex<2>(degree + 1);
-    }
-  } // namespace
-
-
-
   Simulator::Simulator(const Parameters &parameters,
                        const MPI_Comm    comm,
                        const bool        console,
@@ -66,11 +47,7 @@ namespace densify
                                       this_rank == 0 ? &log_file : nullptr))
     , pcout(*tee, this_rank == 0)
     , timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times)
-    , triangulation(comm,
-                    Triangulation<3>::none,
-                    false,
-                    parallel::shared::Triangulation<3>::partition_metis)
-    , dof_handler(triangulation)
+    , system(parameters, comm, pcout, timer)
   {}
 
 
@@ -82,172 +59,48 @@ namespace densify
 
 
 
-  double
-  Simulator::force_control_speed(
-    const std::vector<std::pair<double, double>> &table,
-    const double                                  max_speed) const
-  {
-    if (max_speed > 0.)
-      return max_speed;
-    // the steepest segment of the displacement history
-    double speed = 0.;
-    for (unsigned int i = 1; i < table.size(); ++i)
-      speed = std::max(speed,
-                       std::abs(table[i].second - table[i - 1].second) /
-                         (table[i].first - table[i - 1].first));
-    return speed > 0. ?
-             speed :
-             (upper_initial - prm.tools.lower_position) / prm.time.end_time;
-  }
-
-
-
-  void
-  Simulator::setup_particles()
-  {
-    Scene scene = given_scene ? std::move(*given_scene) : build_scene(prm);
-    given_scene.reset();
-    effects       = resolve_effects(prm, scene);
-    particles     = std::move(scene.particles);
-    upper_initial = scene.upper_initial;
-    // before the first contact, a force-controlled punch moves by a
-    // hundredth of the gap between the punches
-    const double trial = 0.01 * (upper_initial - prm.tools.lower_position);
-    punch_control =
-      PunchControl(scene.punch_table,
-                   scene.force_table,
-                   prm.tools.force_tolerance,
-                   trial,
-                   force_control_speed(scene.punch_table, prm.tools.max_speed));
-    lower_initial =
-      prm.tools.lower_position + interpolate(scene.lower_table, 0.);
-    lower_control =
-      PunchControl(scene.lower_table,
-                   scene.lower_force_table,
-                   prm.tools.lower_force_tolerance,
-                   trial,
-                   force_control_speed(scene.lower_table,
-                                       prm.tools.lower_max_speed));
-    // the explicit method follows force windows dynamically
-    punch_control.set_dynamic(effects.method == Method::explicit_dynamics);
-    lower_control.set_dynamic(effects.method == Method::explicit_dynamics);
-    lateral_table    = std::move(scene.lateral_table);
-    die_top          = scene.die_top;
-    die_table        = std::move(scene.die_table);
-    scene_body_force = scene.body_force;
-    body_force_table = std::move(scene.body_force_table);
-    for (const Particle &p : particles)
-      {
-        particle_material.push_back(create_material(p.material, prm.material));
-        cell_volume_weights.push_back(prm.mesh.cell_volume_stabilisation);
-      }
-    if (effects.locking == LockingRemedy::nodal_averaging &&
-        prm.mesh.cell_volume_barrier > 0.)
-      {
-        cell_volume_barrier.log_limit = std::log(prm.mesh.cell_volume_barrier);
-        for (const auto &material : particle_material)
-          cell_volume_barrier.stiffness.push_back(
-            material->finite_strain() ? material->bulk_modulus() : 0.);
-      }
-  }
-
-
-
-  void
-  Simulator::setup_mesh()
-  {
-    SphereMeshSpec spec;
-    spec.element_size = prm.mesh.element_size;
-    for (const Point<3> &d : parse_points(prm.mesh.refinement_directions,
-                                          "Mesh/Refinement directions"))
-      {
-        if (d.norm() == 0)
-          throw std::runtime_error(
-            "Mesh/Refinement directions: a direction must not be zero");
-        spec.refinement_directions.push_back(d);
-      }
-    spec.refined_element_size = prm.mesh.refined_element_size;
-    spec.growth               = prm.mesh.growth;
-    // a progress line where meshing and the setup take a while
-    const MeshEstimate estimate = estimate_mesh(prm, particles);
-    const bool         large    = estimate.elements > 5e5;
-    Timer              meshing;
-    if (large)
-      pcout << "Meshing " << particles.size() << " particle(s) ("
-            << estimate.distinct_diameters << " diameter(s), about "
-            << format_count(estimate.elements) << " tetrahedra)..."
-            << std::endl;
-    build_multi_body_triangulation(particles, spec, triangulation);
-    if (large)
-      pcout << "  mesh of " << triangulation.n_active_cells()
-            << " tetrahedra in " << format_seconds(meshing.wall_time())
-            << "; setting up the system..." << std::endl;
-    h_min = spec.element_size;
-    if (!spec.refinement_directions.empty())
-      h_min = std::min(h_min, spec.refined_element_size);
-  }
-
-
-
   void
   Simulator::setup_system()
   {
-    fe      = std::make_unique<FESystem<3>>(FE_SimplexP<3>(prm.mesh.degree), 3);
-    mapping = std::make_unique<MappingFE<3>>(FE_SimplexP<3>(1));
-    dof_handler.distribute_dofs(*fe);
-    locally_owned = dof_handler.locally_owned_dofs();
-    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
-
-    // masters of particle contact, and the partner of a vertical pole
-    // spring, may lie on any rank's cells (spin springs exist only with
-    // particle contact)
-    ghosted_dofs =
-      (effects.particle_contact || effects.poles == PoleHolding::vertical) ?
-        complete_index_set(dof_handler.n_dofs()) :
-        locally_relevant;
-
-    solution.reinit(locally_owned, comm);
-    residual.reinit(locally_owned, comm);
-    solution_ghosted.reinit(locally_owned, ghosted_dofs, comm);
-    committed_ghosted.reinit(locally_owned, ghosted_dofs, comm);
-
+    system.setup_dofs();
+    residual.reinit(system.locally_owned, comm);
     // the contact penalty of each particle: E / h times the factor, or for
     // explicit dynamics the one that fits the stable step of the lumped mass
-    std::vector<double> penalty;
-    for (const auto &m : particle_material)
-      penalty.push_back(prm.contact.penalty_factor * m->youngs_modulus() /
-                        h_min);
     const double tangential_ratio =
       prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
-    if (effects.method == Method::explicit_dynamics)
-      penalty = setup_explicit(effects.any_friction() ? tangential_ratio : 0.);
-    setup_force_terms(penalty);
+    if (system.effects.method == Method::explicit_dynamics)
+      explicit_driver = std::make_unique<ExplicitDriver>(
+        prm, system, pcout, timer, this_rank == 0 ? &log_file : nullptr);
+    system.setup_force_terms(
+      explicit_driver ?
+        explicit_driver->setup(
+          system.effects.any_friction() ? tangential_ratio : 0.) :
+        system.contact_penalty());
     // explicit dynamics has no tangent and no linear solver
-    current_upper = upper_initial;
-    if (effects.method == Method::explicit_dynamics)
+    if (system.effects.method == Method::explicit_dynamics)
       return;
     setup_matrix();
 
     NewtonControl newton_control;
     newton_control.tolerance      = prm.solver.newton_tolerance;
     newton_control.max_iterations = prm.solver.max_newton_iterations;
-    newton_control.line_search    = effects.line_search;
+    newton_control.line_search    = system.effects.line_search;
     newton_control.adaptive_linear_tolerance =
       prm.solver.adaptive_linear_tolerance;
     newton_control.linear_tolerance = prm.solver.linear_tolerance;
     // no node moves by more than half the smallest element size in one
     // Newton iteration
-    newton_control.step_limit         = 0.5 * h_min;
-    newton_control.secant_start       = effects.friction_secant_start;
+    newton_control.step_limit         = 0.5 * system.h_min;
+    newton_control.secant_start       = system.effects.friction_secant_start;
     newton_control.verbose            = prm.output.verbose;
-    newton_control.continuation       = effects.continuation;
+    newton_control.continuation       = system.effects.continuation;
     newton_control.continuation_start = prm.solver.pseudo_mass;
     // absolute floor: a force far below anything the scene can carry
     double E_max = 0, D_max = 0;
-    for (unsigned int p = 0; p < particles.size(); ++p)
+    for (unsigned int p = 0; p < system.particles.size(); ++p)
       {
-        E_max = std::max(E_max, particle_material[p]->youngs_modulus());
-        D_max = std::max(D_max, particles[p].diameter);
+        E_max = std::max(E_max, system.particle_material[p]->youngs_modulus());
+        D_max = std::max(D_max, system.particles[p].diameter);
       }
     newton_control.floor = 1e-12 * E_max * D_max * D_max;
     newton = std::make_unique<NewtonSolver>(newton_control, pcout);
@@ -258,140 +111,18 @@ namespace densify
     stepper_control.gap_tolerance     = prm.contact.gap_tolerance;
     stepper_control.max_augmentations = prm.contact.max_augmentations;
     stepper = std::make_unique<LoadStepper>(stepper_control, *newton, pcout);
-    stepper->setup(solution);
+    stepper->setup(system.solution);
 
     linear_solver =
-      std::make_unique<LinearSolver>(effects.linear_solver,
+      std::make_unique<LinearSolver>(system.effects.linear_solver,
                                      prm.solver.linear_tolerance,
                                      prm.solver.max_linear_iterations,
                                      prm.solver.reuse_amg,
                                      prm.solver.reproducible,
                                      timer);
-    linear_solver->setup_null_space(dof_handler, *mapping, locally_owned);
-  }
-
-
-
-  void
-  Simulator::setup_force_terms(const std::vector<double> &penalty)
-  {
-    // the continuum, with the F-bar of the locking remedy
-    std::unique_ptr<NodalAveraging> nodal_averaging;
-    if (effects.locking == LockingRemedy::nodal_averaging)
-      {
-        nodal_averaging = std::make_unique<NodalAveraging>(dof_handler,
-                                                           *mapping,
-                                                           cell_volume_weights);
-        nodal_averaging->set_cell_volume_barrier(cell_volume_barrier);
-      }
-    continuum  = std::make_unique<Continuum>(dof_handler,
-                                            particle_material,
-                                            std::move(nodal_averaging),
-                                            prm.mesh.degree);
-    bulk_terms = {continuum.get()};
-    if (effects.body_force)
-      {
-        body_force = std::make_unique<BodyForce>(dof_handler,
-                                                 scene_body_force,
-                                                 body_force_table,
-                                                 prm.mesh.degree);
-        bulk_terms.push_back(body_force.get());
-      }
-
-    // the friction law of every contact pair
-    FrictionLaw friction;
-    friction.model             = effects.friction_model;
-    friction.consistent        = effects.consistent_friction_tangent;
-    friction.pressure_coupling = effects.friction_pressure_coupling;
-    friction.tangential_ratio =
-      prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
-    const Quadrature<2> contact_points =
-      contact_quadrature(effects.contact_points, prm.mesh.degree);
-    std::vector<RigidTool>   tools;
-    std::vector<FrictionLaw> tool_laws;
-    if (effects.has_tool(ToolKind::lower_punch))
-      tools.push_back({ToolKind::lower_punch, lower_initial});
-    if (effects.has_tool(ToolKind::upper_punch))
-      tools.push_back({ToolKind::upper_punch, upper_initial});
-    if (effects.has_tool(ToolKind::die_wall))
-      {
-        tools.push_back({ToolKind::die_wall, prm.tools.die_diameter / 2});
-        tools.back().top = die_top;
-      }
-    for (const RigidTool &tool : tools)
-      {
-        tool_laws.push_back(friction);
-        tool_laws.back().mu = effects.friction_of(tool.kind);
-      }
-    other_terms.clear();
-    if (!tools.empty())
-      {
-        tool_contact = std::make_unique<ToolContact>();
-        tool_contact->setup(
-          dof_handler, tools, tool_laws, penalty, contact_points);
-        tool_contact->set_committed_solution(committed_ghosted);
-        other_terms.push_back(tool_contact.get());
-      }
-    if (effects.particle_contact)
-      {
-        // candidates within an element of the smallest size: more than a
-        // Newton iteration can move (the step limiter allows h/2)
-        search_margin    = 0.25 * h_min;
-        friction.mu      = effects.particle_friction;
-        particle_contact = std::make_unique<ParticleContact>();
-        particle_contact->setup(dof_handler, penalty, friction, contact_points);
-        particle_contact->set_geometric_tangent(effects.geometric_tangent);
-        particle_contact->set_committed_solution(committed_ghosted);
-        update_ghosts();
-        particle_contact->update_search(solution_ghosted, search_margin);
-        other_terms.push_back(particle_contact.get());
-      }
-    if (effects.method == Method::explicit_dynamics)
-      {
-        // the integral action on the penetration (Explicit/Contact
-        // multiplier steps)
-        const unsigned int n_relax    = prm.explicit_dynamics.multiplier_steps;
-        const double       relaxation = n_relax > 0 ? 1. / n_relax : 0.;
-        if (tool_contact)
-          tool_contact->set_relaxation(relaxation);
-        if (particle_contact)
-          particle_contact->set_relaxation(relaxation);
-        return;
-      }
-    if (effects.poles != PoleHolding::none)
-      {
-        // the stiffness of a penalty contact on an element face: penalty *
-        // h^2
-        std::vector<double> stiffness;
-        for (const auto &m : particle_material)
-          stiffness.push_back(prm.contact.penalty_factor * m->youngs_modulus() *
-                              h_min);
-        pole_springs =
-          std::make_unique<PoleSprings>(dof_handler,
-                                        particles,
-                                        stiffness,
-                                        effects.poles == PoleHolding::vertical,
-                                        effects.poles == PoleHolding::axis &&
-                                          effects.particle_contact);
-        other_terms.push_back(pole_springs.get());
-      }
-    if (effects.stabilisation || effects.continuation != Continuation::off)
-      {
-        // E / D^2 times the mass matrix of each particle: the stabilisation
-        // (times beta) and the pseudo mass of the continuation
-        std::vector<double> alpha;
-        for (unsigned int p = 0; p < particles.size(); ++p)
-          alpha.push_back(particle_material[p]->youngs_modulus() /
-                          (particles[p].diameter * particles[p].diameter));
-        stabilisation =
-          std::make_unique<Stabilisation>(dof_handler,
-                                          alpha,
-                                          effects.stabilisation ?
-                                            prm.solver.stabilisation :
-                                            0.,
-                                          prm.mesh.degree);
-        other_terms.push_back(stabilisation.get());
-      }
+    linear_solver->setup_null_space(system.dof_handler,
+                                    *system.mapping,
+                                    system.locally_owned);
   }
 
 
@@ -400,12 +131,12 @@ namespace densify
   Simulator::setup_matrix()
   {
     TimerOutput::Scope                t(timer, "Setup: matrix");
-    TrilinosWrappers::SparsityPattern sp(locally_owned, comm);
+    TrilinosWrappers::SparsityPattern sp(system.locally_owned, comm);
     DoFTools::make_sparsity_pattern(
-      dof_handler, sp, AffineConstraints<double>(), false, this_rank);
-    for (ForceTerm *term : bulk_terms)
+      system.dof_handler, sp, AffineConstraints<double>(), false, this_rank);
+    for (ForceTerm *term : system.bulk_terms)
       term->add_couplings(sp);
-    for (ForceTerm *term : other_terms)
+    for (ForceTerm *term : system.other_terms)
       term->add_couplings(sp);
     sp.compress();
     // the preconditioner (or factorization) refers to the old matrix: free
@@ -421,77 +152,8 @@ namespace densify
             << tangent.n_nonzero_elements() /
                  std::max<types::global_dof_index>(1, tangent.m())
             << " per row" << std::endl;
-    if (stabilisation)
-      stabilisation->reinit(sp, *mapping);
-  }
-
-
-
-  void
-  Simulator::update_ghosts()
-  {
-    ghost_import(solution, solution_ghosted);
-  }
-
-
-
-  double
-  Simulator::upper_punch_position(const double t) const
-  {
-    return upper_initial - punch_control.travel(t);
-  }
-
-
-
-  double
-  Simulator::lower_punch_position(const double t) const
-  {
-    return prm.tools.lower_position + lower_control.travel(t);
-  }
-
-
-
-  AssemblyContext
-  Simulator::context(const double tangent_margin) const
-  {
-    AssemblyContext c;
-    c.mapping           = mapping.get();
-    c.solution          = &solution_ghosted;
-    c.tangent_margin    = tangent_margin;
-    c.explicit_dynamics = effects.method == Method::explicit_dynamics;
-    return c;
-  }
-
-
-
-  double
-  Simulator::assemble_terms(TrilinosWrappers::MPI::Vector &forces,
-                            const bool                     with_matrix,
-                            const double                   tangent_margin)
-  {
-    TrilinosWrappers::SparseMatrix *matrix = with_matrix ? &tangent : nullptr;
-    const AssemblyContext           c      = context(tangent_margin);
-    // the bulk terms compress the forces themselves
-    for (ForceTerm *term : bulk_terms)
-      term->assemble(c, forces, matrix);
-    const double bulk_norm = forces.l2_norm();
-    for (ForceTerm *term : other_terms)
-      {
-        TimerOutput::Scope tc(timer, "Assembly: " + term->name());
-        term->assemble(c, forces, matrix);
-      }
-    forces.compress(VectorOperation::add);
-    if (with_matrix)
-      {
-        tangent.compress(VectorOperation::add);
-        for (ForceTerm *term : other_terms)
-          term->finish_tangent(tangent);
-      }
-    const ContactResults contact       = contact_results();
-    double               contact_total = contact.particles.normal_force;
-    for (const double f : contact.tools.normal_force)
-      contact_total += f;
-    return std::max(bulk_norm, contact_total);
+    if (system.stabilisation)
+      system.stabilisation->reinit(sp, *system.mapping);
   }
 
 
@@ -499,27 +161,16 @@ namespace densify
   std::pair<std::vector<unsigned int>, std::vector<double>>
   Simulator::station_contacts() const
   {
-    if (!station_recorded)
+    const ContactRecord *record =
+      explicit_driver ? explicit_driver->station_record() : nullptr;
+    if (record == nullptr)
       return {contact_partners(), particle_tool_forces(ToolKind::die_wall)};
-    std::vector<double> die_force = station_record.die_force;
+    std::vector<double> die_force = record->die_force;
     Utilities::MPI::sum(die_force, comm, die_force);
-    return {particle_contact ?
-              particle_contact->partners_of(station_record.pairs) :
-              std::vector<unsigned int>(particles.size(), 0),
+    return {system.particle_contact ?
+              system.particle_contact->partners_of(record->pairs) :
+              std::vector<unsigned int>(system.particles.size(), 0),
             die_force};
-  }
-
-
-
-  Simulator::ContactResults
-  Simulator::contact_results() const
-  {
-    ContactResults r;
-    if (tool_contact)
-      r.tools = tool_contact->last_result();
-    if (particle_contact)
-      r.particles = particle_contact->last_result();
-    return r;
   }
 
 
@@ -527,11 +178,16 @@ namespace densify
   void
   Simulator::setup()
   {
-    if (dof_handler.has_active_dofs())
+    if (system.dof_handler.has_active_dofs())
       return;
     TimerOutput::Scope t(timer, "Setup");
-    setup_particles();
-    setup_mesh();
+    Scene scene = given_scene ? std::move(*given_scene) : build_scene(prm);
+    const Effects effects =
+      given_effects ? *given_effects : resolve_effects(prm, scene);
+    given_scene.reset();
+    given_effects.reset();
+    system.setup_particles(std::move(scene), effects);
+    system.setup_mesh();
     setup_system();
   }
 
@@ -544,17 +200,17 @@ namespace densify
     setup();
 
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    pcout << "Densify: " << particles.size() << " particle(s), "
-          << triangulation.n_active_cells() << " tetrahedra, " << n_dofs()
-          << " DoFs (P" << prm.mesh.degree << "), " << n_ranks << " MPI rank(s)"
-          << std::endl;
+    pcout << "Densify: " << system.particles.size() << " particle(s), "
+          << system.triangulation.n_active_cells() << " tetrahedra, "
+          << n_dofs() << " DoFs (P" << prm.mesh.degree << "), " << n_ranks
+          << " MPI rank(s)" << std::endl;
     {
       // every distinct material law once, then the tools and the solver
       std::vector<std::string> laws;
-      for (const auto &m : particle_material)
+      for (const auto &m : system.particle_material)
         if (std::find(laws.begin(), laws.end(), m->name()) == laws.end())
           laws.push_back(m->name());
-      pcout << "Active effects: " << describe_effects(effects, laws, prm)
+      pcout << "Active effects: " << describe_effects(system.effects, laws, prm)
             << std::endl;
       if (!prm.fidelity_summary.empty())
         pcout << "Fidelity: " << prm.fidelity_summary << std::endl;
@@ -575,37 +231,19 @@ namespace densify
       if (has_density)
         pcout << "Initial relative density " << std::fixed
               << std::setprecision(2)
-              << 100 * density(v0, upper_initial - lower_initial)
+              << 100 * density(v0, system.upper_initial - system.lower_initial)
               << " % (particle volume of the mesh " << std::setprecision(4)
               << v0 << " mm^3)" << std::defaultfloat << std::endl;
     }
 
-    for (const ParticleMeasure &m : measure_particles())
+    for (const ParticleMeasure &m : system.measure_particles())
       initial_volumes.push_back(m.volume);
     // a resumed run continues after the checkpoint's step, appending to the
     // files' rows up to that step
-    if (effects.method == Method::explicit_dynamics)
-      {
-        // at rest at the start (or at the checkpoint's state, which
-        // read_checkpoint() then restores)
-        const double dt =
-          explicit_dynamics->start(*this,
-                                   solution,
-                                   effects.mass_scaling != MassScaling::none);
-        const auto [low, high] =
-          std::minmax_element(explicit_penalty.begin(), explicit_penalty.end());
-        pcout << "Explicit dynamics: time step " << std::setprecision(4) << dt
-              << " s (stable " << explicit_dynamics->stable_step()
-              << " s), about "
-              << static_cast<unsigned long long>(
-                   prm.explicit_dynamics.loading_time / dt + 0.5)
-              << " steps; added mass " << std::setprecision(3)
-              << 100. * lumped_mass->added_mass_fraction()
-              << " %; contact penalty " << std::setprecision(4) << *low;
-        if (*high > *low)
-          pcout << " - " << *high;
-        pcout << " MPa/mm" << std::endl;
-      }
+    // at rest at the start (or at the checkpoint's state, which
+    // read_checkpoint() then restores)
+    if (explicit_driver)
+      explicit_driver->start();
     const unsigned int first_step = control.resume ? read_checkpoint() + 1 : 1;
     const std::string  statistics_name =
       prm.output.directory + "/statistics.csv";
@@ -648,8 +286,8 @@ namespace densify
         Timer          step_timer;
         const double   time         = prm.time.end_time * step / n_steps;
         const double   before       = prm.time.end_time * (step - 1) / n_steps;
-        const double   upper_before = upper_punch_position(before);
-        const double   lower_before = lower_punch_position(before);
+        const double   upper_before = system.upper_punch_position(before);
+        const double   lower_before = system.lower_punch_position(before);
         StepStatistics s;
         s.step                   = step;
         s.time                   = time;
@@ -657,12 +295,16 @@ namespace densify
         ContactResults results;
         try
           {
-            if (effects.method == Method::explicit_dynamics)
-              results = advance_explicit(time, step, s);
+            if (explicit_driver)
+              {
+                results      = explicit_driver->advance(time);
+                s.increments = explicit_driver->account().interval_steps;
+              }
             else
               {
                 StepCounts counts;
-                stepper->advance_to(*this, current_time, time, step, counts);
+                stepper->advance_to(
+                  *this, system.current_time, time, step, counts);
                 s.newton_iterations        = counts.newton_iterations;
                 s.linear_iterations        = counts.linear_iterations;
                 s.augmentations            = counts.augmentations;
@@ -678,7 +320,7 @@ namespace densify
           {
             // every rank failed alike, back at the last converged increment:
             // keep it for a resumption with other solver settings
-            if (step == first_step && current_time == 0)
+            if (step == first_step && system.current_time == 0)
               throw;
             try
               {
@@ -690,7 +332,7 @@ namespace densify
               }
             throw ConvergenceError(
               std::string(e.what()) + "; the last converged state (time " +
-              Utilities::to_string(current_time) + " s) is in " +
+              Utilities::to_string(system.current_time) + " s) is in " +
               prm.output.directory +
               "/checkpoint/: continue with --resume and other Solver or "
               "Time stepping/Maximum cut-backs settings");
@@ -698,28 +340,29 @@ namespace densify
         const ToolContactResult &contact = results.tools;
         // where the step left the punches (a force-controlled punch is
         // where its force took it)
-        const double upper         = upper_punch_position(time);
-        const double lower         = lower_punch_position(time);
-        s.punch_displacement       = upper_initial - upper;
-        s.lower_punch_displacement = lower - lower_initial;
-        s.die_displacement =
-          interpolate(die_table, time) - interpolate(die_table, 0.);
+        const double upper         = system.upper_punch_position(time);
+        const double lower         = system.lower_punch_position(time);
+        s.punch_displacement       = system.upper_initial - upper;
+        s.lower_punch_displacement = lower - system.lower_initial;
+        s.die_displacement         = interpolate(system.die_table, time) -
+                             interpolate(system.die_table, 0.);
         {
           // the lower punch's rise in the die (a die lowered past a held
           // compact ejects it too); a lower punch under force control
           // presses: its rise closes the gap as the upper punch's advance
           // does
-          const double rise =
-            lower - lower_before -
-            (interpolate(die_table, time) - interpolate(die_table, before));
-          const bool pressing = lower_control.force_controlled(time);
+          const double rise = lower - lower_before -
+                              (interpolate(system.die_table, time) -
+                               interpolate(system.die_table, before));
+          const bool pressing = system.lower_control.force_controlled(time);
           double     advance  = upper_before - upper + (pressing ? rise : 0.);
           // under force control the target's trend decides: a flat target
           // holds, whatever the punch's creep or elastic relaxation
           const PunchControl *controlled =
-            punch_control.force_controlled(time) ? &punch_control :
-            pressing                             ? &lower_control :
-                                                   nullptr;
+            system.punch_control.force_controlled(time) ?
+              &system.punch_control :
+            pressing ? &system.lower_control :
+                       nullptr;
           if (controlled != nullptr)
             {
               const double a = controlled->target(before),
@@ -748,20 +391,20 @@ namespace densify
         s.upper_punch_friction   = contact.friction_force[upper_kind].norm();
         s.lower_punch_friction   = contact.friction_force[lower_kind].norm();
         s.slipping_points        = contact.n_slip + results.particles.n_slip;
-        update_ghosts();
+        system.update_ghosts();
         const auto [partners, die_force] = station_contacts();
         for (const unsigned int n : partners)
           s.contact_pairs += n;
         s.contact_pairs /= 2;
-        s.coordination_number = 2. * s.contact_pairs / particles.size();
+        s.coordination_number = 2. * s.contact_pairs / system.particles.size();
         s.contact_area_fraction =
           2. * results.particles.contact_area /
-          particle_surface_area(dof_handler, solution_ghosted);
-        s.pole_force = pole_springs ? pole_springs->force() : 0.;
+          particle_surface_area(system.dof_handler, system.solution_ghosted);
+        s.pole_force = system.pole_springs ? system.pole_springs->force() : 0.;
         std::vector<ParticleMeasure> measures;
         {
           TimerOutput::Scope t(timer, "Output: particle measures");
-          measures = measure_particles(true);
+          measures = system.measure_particles(true);
         }
         for (const ParticleMeasure &m : measures)
           s.particle_volume += m.volume;
@@ -769,8 +412,12 @@ namespace densify
         // rank; the rows written before stay complete
         std::string write_failure;
         if (this_rank == 0)
-          write_failure = particle_writer->write(
-            step, particles, measures, initial_volumes, partners, die_force);
+          write_failure = particle_writer->write(step,
+                                                 system.particles,
+                                                 measures,
+                                                 initial_volumes,
+                                                 partners,
+                                                 die_force);
         s.relative_density = density(s.particle_volume, upper - lower);
         {
           const DieStresses stress =
@@ -786,30 +433,33 @@ namespace densify
           s.die_wall_pressure  = stress.die_wall;
           s.radial_axial_ratio = stress.radial_axial_ratio;
           const CompactEnvelope envelope =
-            compact_envelope(dof_handler, solution_ghosted);
+            compact_envelope(system.dof_handler, system.solution_ghosted);
           s.compact_height   = envelope.top - envelope.bottom;
           s.compact_diameter = 2 * envelope.radius;
           s.envelope_density =
             s.particle_volume / (numbers::PI * envelope.radius *
                                  envelope.radius * s.compact_height);
         }
-        s.plastic_work = continuum->plastic_work(*mapping);
+        s.plastic_work = system.continuum->plastic_work(*system.mapping);
         const SmallestCellVolume smallest =
-          smallest_cell_volume(dof_handler, *mapping, solution_ghosted);
+          smallest_cell_volume(system.dof_handler,
+                               *system.mapping,
+                               system.solution_ghosted);
         s.min_cell_volume_ratio = smallest.ratio;
-        if (effects.method == Method::explicit_dynamics)
+        if (explicit_driver)
           {
-            const ExplicitDynamics::Account &a = explicit_account;
-            s.explicit_steps                   = a.steps;
-            s.time_step                        = a.step;
-            s.kinetic_energy                   = a.kinetic;
-            s.internal_work                    = a.internal;
-            s.damping_work                     = a.damping;
-            s.friction_work                    = explicit_work.friction;
-            s.contact_energy                   = explicit_work.contact_energy;
-            s.external_work   = explicit_work.tools + explicit_work.body;
-            s.multiplier_work = explicit_work.multipliers;
-            s.added_mass      = lumped_mass->added_mass_fraction();
+            const ExplicitDynamics::Account    &a = explicit_driver->account();
+            const ExplicitDriver::ExplicitWork &w = explicit_driver->work();
+            s.explicit_steps                      = a.steps;
+            s.time_step                           = a.step;
+            s.kinetic_energy                      = a.kinetic;
+            s.internal_work                       = a.internal;
+            s.damping_work                        = a.damping;
+            s.friction_work                       = w.friction;
+            s.contact_energy                      = w.contact_energy;
+            s.external_work                       = w.tools + w.body;
+            s.multiplier_work                     = w.multipliers;
+            s.added_mass = explicit_driver->added_mass_fraction();
             s.energy_balance =
               s.external_work + s.multiplier_work -
               (s.kinetic_energy + s.internal_work + s.damping_work +
@@ -828,7 +478,7 @@ namespace densify
         write_failure = first_error(write_failure, comm);
         if (!write_failure.empty())
           throw std::runtime_error(write_failure);
-        if (effects.method == Method::explicit_dynamics)
+        if (system.effects.method == Method::explicit_dynamics)
           warn_penetration(s);
         warn_cell_volume(s.step, smallest);
         // the station's rows are written, so that they show why it stops
@@ -840,17 +490,17 @@ namespace densify
         // are equal while a station's are not (Explicit/End speed fraction)
         const auto work = [&](const unsigned int k) {
           const double tau = prm.time.end_time * k / n_steps;
-          return explicit_dynamics ? explicit_dynamics->physical_time(tau) :
-                                     tau;
+          return explicit_driver ? explicit_driver->physical_time(tau) : tau;
         };
         const double done = work(step) - work(first_step - 1);
         const double left =
           (s.wall_seconds - wall_before) / done * (work(n_steps) - work(step));
         pcout << progress_line(s,
                                n_steps,
-                               pole_springs != nullptr,
+                               system.pole_springs != nullptr,
                                has_density,
-                               effects.method == Method::explicit_dynamics,
+                               system.effects.method ==
+                                 Method::explicit_dynamics,
                                left)
               << std::endl;
 
@@ -910,7 +560,8 @@ namespace densify
           if (has_density)
             pcout << compaction_summary(
               read_loading_curve(statistics_name,
-                                 upper_initial - prm.tools.lower_position));
+                                 system.upper_initial -
+                                   prm.tools.lower_position));
           pcout << contact_summary(statistics_name)
                 << springback_summary(statistics_name)
                 << ejection_summary(statistics_name);

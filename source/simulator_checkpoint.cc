@@ -253,56 +253,45 @@ namespace densify
     CheckpointHeader header;
     header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
     header.rank        = this_rank;
-    header.n_cells     = triangulation.n_active_cells();
-    header.n_dofs      = dof_handler.n_dofs();
+    header.n_cells     = system.triangulation.n_active_cells();
+    header.n_dofs      = system.dof_handler.n_dofs();
     header.fingerprint = prm.fingerprint;
-    for (const Point<3> &v : triangulation.get_vertices())
+    for (const Point<3> &v : system.triangulation.get_vertices())
       header.vertices += v[0] + v[1] + v[2];
 
     CheckpointSnapshot snapshot;
     snapshot.step = step;
-    snapshot.time = current_time;
+    snapshot.time = system.current_time;
     std::ostringstream out(std::ios::binary);
     {
       boost::archive::binary_oarchive archive(out);
       std::vector<double>             solution_values =
-        owned_values(solution, locally_owned);
+        owned_values(system.solution, system.locally_owned);
       // the load stepper's predictor and increment (implicit method)
       std::vector<double> increment_values =
-        stepper ? owned_values(stepper->last_increment, locally_owned) :
-                  std::vector<double>(locally_owned.n_elements(), 0.);
+        stepper ? owned_values(stepper->last_increment, system.locally_owned) :
+                  std::vector<double>(system.locally_owned.n_elements(), 0.);
       double       next_increment = stepper ? stepper->next_increment : 0.;
       double       last_punch_increment = stepper ? stepper->last_travel : 0.;
       unsigned int last_step            = step;
       double       wall                 = wall_seconds;
-      double       time                 = current_time;
-      double       upper                = current_upper;
+      double       time                 = system.current_time;
+      double       upper                = system.current_upper;
       archive &header &last_step &time &upper &next_increment
         &last_punch_increment &wall &solution_values &increment_values
           &pvd_records;
       // explicit dynamics: the integrator, the loads' account and the
       // mass-scaling factors
-      ExplicitDynamics::State dynamics;
-      std::vector<double>     factors;
-      double                  calibration = 1.;
-      std::vector<double>     mode;
-      double                  bound   = calibrated_bound;
-      unsigned int            updates = mass_updates;
-      auto                    work    = explicit_work;
-      if (explicit_dynamics)
-        {
-          dynamics    = explicit_dynamics->state();
-          factors     = lumped_mass->scaling_factors();
-          calibration = lumped_mass->calibration_factor();
-          mode.assign(frequency_mode.begin(), frequency_mode.end());
-        }
-      // the explicit steps the mass scaling was set for
-      unsigned int n_explicit = prm.explicit_dynamics.n_steps;
-      double       target     = calibration_target;
-      archive &dynamics &work &factors &calibration &bound &updates &mode
-        &n_explicit &punch_control &lower_control &target;
+      ExplicitDriver::Saved saved;
+      if (explicit_driver)
+        saved = explicit_driver->saved();
+      else
+        saved.n_explicit = prm.explicit_dynamics.n_steps;
+      archive &saved.dynamics &saved.work &saved.factors &saved
+        .calibration &saved.bound &saved.updates &saved.mode &saved
+        .n_explicit &system.punch_control &system.lower_control &saved.target;
       // each force term's state (history, multipliers, friction)
-      for (const ForceTerm *term : force_terms())
+      for (const ForceTerm *term : system.force_terms())
         term->write_checkpoint(archive);
     }
     snapshot.bytes = out.str();
@@ -432,16 +421,12 @@ namespace densify
     // the .pvd's records of the graphics up to the checkpoint
     GraphicsWriter::Records pvd_records;
 
-    CheckpointHeader        header;
-    unsigned int            step = 0;
-    double                  wall = 0.;
-    std::vector<double>     solution_values, increment_values;
-    double                  next_increment = 0., last_punch_increment = 0.;
-    ExplicitDynamics::State dynamics;
-    std::vector<double>     factors;
-    double                  calibration = 1.;
-    std::vector<double>     mode;
-    unsigned int            n_explicit = 0;
+    CheckpointHeader      header;
+    unsigned int          step = 0;
+    double                wall = 0.;
+    std::vector<double>   solution_values, increment_values;
+    double                next_increment = 0., last_punch_increment = 0.;
+    ExplicitDriver::Saved saved;
     try
       {
         boost::archive::binary_iarchive archive(in);
@@ -483,10 +468,10 @@ namespace densify
             first_difference(rest, stored_rest) +
             "); resume with the parameters of the stopped run");
         double vertices = 0;
-        for (const Point<3> &v : triangulation.get_vertices())
+        for (const Point<3> &v : system.triangulation.get_vertices())
           vertices += v[0] + v[1] + v[2];
-        if (header.n_cells != triangulation.n_active_cells() ||
-            header.n_dofs != dof_handler.n_dofs() ||
+        if (header.n_cells != system.triangulation.n_active_cells() ||
+            header.n_dofs != system.dof_handler.n_dofs() ||
             std::abs(header.vertices - vertices) >
               1e-9 * (1 + std::abs(vertices)))
           throw InputError("--resume: the checkpoint's mesh (" +
@@ -494,10 +479,11 @@ namespace densify
                            std::to_string(header.n_dofs) +
                            " DoFs) is not the one this scene makes; run "
                            "without --resume");
-        archive &step &current_time &current_upper &next_increment
-          &last_punch_increment &wall &solution_values &increment_values
-            &pvd_records &dynamics &explicit_work &factors &calibration
-              &calibrated_bound &mass_updates &mode &n_explicit;
+        archive &step &system.current_time &system
+          .current_upper &next_increment &last_punch_increment &wall
+            &solution_values &increment_values &pvd_records &saved
+          .dynamics &saved.work &saved.factors &saved.calibration &saved
+          .bound &saved.updates &saved.mode &saved.n_explicit;
         if (step >= prm.time.n_steps)
           throw InputError(
             "--resume: the checkpoint is of the run's last step " +
@@ -508,14 +494,14 @@ namespace densify
             stored_schedule != schedule)
           {
             const std::string broken =
-              schedule_break(stored_schedule, schedule, current_time);
+              schedule_break(stored_schedule, schedule, system.current_time);
             if (!broken.empty())
               throw InputError(
                 "--resume: this run has " + broken +
                 "; a resumed run may only go on beyond the stopped run's "
                 "schedule (the same load step, the load histories unchanged "
                 "up to the checkpoint)");
-            if (effects.method != Method::implicit)
+            if (system.effects.method != Method::implicit)
               throw InputError(
                 "--resume: Time stepping/End time, Number of steps and the "
                 "load histories may change on resume only with Solver/Method "
@@ -524,14 +510,14 @@ namespace densify
                 "schedule");
           }
         if (header.version >= 7)
-          archive &punch_control;
+          archive &system.punch_control;
         if (header.version >= 8)
-          archive &lower_control;
+          archive &system.lower_control;
         // format 8 and before: no rise of the calibration under way
-        calibration_target = calibration;
+        saved.target = saved.calibration;
         if (header.version >= 9)
-          archive &calibration_target;
-        for (ForceTerm *term : force_terms())
+          archive &saved.target;
+        for (ForceTerm *term : system.force_terms())
           term->read_checkpoint(archive);
       }
     catch (const InputError &)
@@ -545,57 +531,28 @@ namespace densify
                          "); run without --resume");
       }
 
-    set_owned_values(solution_values, locally_owned, solution);
+    set_owned_values(solution_values, system.locally_owned, system.solution);
     if (stepper)
       {
         set_owned_values(increment_values,
-                         locally_owned,
+                         system.locally_owned,
                          stepper->last_increment);
         stepper->next_increment = next_increment;
         stepper->last_travel    = last_punch_increment;
       }
-    wall_before       = wall;
-    committed_ghosted = solution;
-    update_ghosts();
-    if (particle_contact)
+    wall_before              = wall;
+    system.committed_ghosted = system.solution;
+    system.update_ghosts();
+    if (system.particle_contact)
       {
         // the search of the loaded configuration, and its matrix pattern
-        particle_contact->update_search(solution_ghosted, search_margin);
-        if (effects.method == Method::implicit)
+        system.particle_contact->update_search(system.solution_ghosted,
+                                               system.search_margin);
+        if (system.effects.method == Method::implicit)
           setup_matrix();
       }
-    if (explicit_dynamics)
-      {
-        if (dynamics.velocity.size() != locally_owned.n_elements() ||
-            factors.size() != triangulation.n_active_cells())
-          throw InputError("--resume: the checkpoint was written by an "
-                           "implicit run; resume it with Solver/Method = "
-                           "implicit");
-        // with another Explicit/Number of steps (the advice of a run that
-        // left the quasi-static limits) the mass scaling starts anew for the
-        // new step: the mass set up for it is kept, and the nodes keep their
-        // velocities (a quasi-static motion follows the punch, whatever the
-        // mass)
-        const bool same_steps = n_explicit == prm.explicit_dynamics.n_steps;
-        explicit_dynamics->set_state(dynamics, same_steps);
-        // the factors were raised for the step of the station ending at
-        // the checkpoint (Explicit/Step profile)
-        if (same_steps)
-          lumped_mass->set_scaling_factors(factors,
-                                           explicit_dynamics->target_step_at(
-                                             current_time) /
-                                             prm.explicit_dynamics.safety,
-                                           dynamics.mass);
-        else
-          pcout << "Explicit/Number of steps " << prm.explicit_dynamics.n_steps
-                << " (the checkpoint's: " << n_explicit
-                << "): the mass scaling starts anew" << std::endl;
-        lumped_mass->set_calibration_factor(calibration);
-        AssertDimension(mode.size(), frequency_mode.locally_owned_size());
-        std::copy(mode.begin(), mode.end(), frequency_mode.begin());
-        search_solution = solution;
-        body_solution   = solution;
-      }
+    if (explicit_driver)
+      explicit_driver->restore(saved, system.current_time);
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none
     graphics.set_records(pvd_records);
@@ -617,7 +574,8 @@ namespace densify
     if (!error.empty())
       throw std::runtime_error(error);
     pcout << "Resumed from the checkpoint after step " << step << " (time "
-          << current_time << ") in " << from.string() << "/" << std::endl;
+          << system.current_time << ") in " << from.string() << "/"
+          << std::endl;
     return step;
   }
 

@@ -56,7 +56,7 @@ namespace
 
   /**
    * The cylinder between two frictionless punches as an ExplicitSystem, the
-   * way the Simulator is one (source/simulator_explicit.cc): internal
+   * way the ExplicitDriver is one (source/drivers/explicit_driver.cc): internal
    * forces by the nodal-averaged F-bar with shared corners, every state
    * committed, the punches' contact forces as the external ones. The x and
    * y components of the vertices on the axis and the y component of those
@@ -248,7 +248,7 @@ namespace
     /**
      * The largest squared frequency of the elastic mesh with @p mass, by a
      * power iteration on M^-1 K with K x a finite difference of the internal
-     * forces at the virgin state (Simulator::largest_frequency2(); the J2
+     * forces at the virgin state (ExplicitDriver::largest_frequency2(); the J2
      * law stays elastic at these strains).
      */
     double

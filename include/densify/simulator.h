@@ -1,5 +1,5 @@
-// The quasi-static compaction driver: mesh, DoFs, Newton per load step,
-// contact, output.
+// The run of one scene: the multi-body system, the driver of its solution
+// method, the load steps with their statistics, checkpoints and output.
 #pragma once
 
 #include <deal.II/base/conditional_ostream.h>
@@ -24,13 +24,14 @@
 #include <densify/assembly/stabilisation.h>
 #include <densify/contact/particle_contact.h>
 #include <densify/contact/tool_contact.h>
-#include <densify/drivers/explicit_dynamics.h>
+#include <densify/drivers/explicit_driver.h>
 #include <densify/drivers/load_stepper.h>
 #include <densify/drivers/punch_control.h>
 #include <densify/effects.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/j2_plasticity.h>
 #include <densify/material/material.h>
+#include <densify/multi_body_system.h>
 #include <densify/parameters.h>
 #include <densify/postprocess/cell_volume.h>
 #include <densify/postprocess/graphics.h>
@@ -65,18 +66,17 @@ namespace densify
   };
 
   /**
-   * Runs one scene: builds the multi-body mesh of all particles, resolves
-   * the scene's effects (Effects) and builds a force term for each effect
-   * that is on (the continuum, body force, stabilisation, pole springs, tool
-   * and particle contact: ForceTerm). For each load step it moves the upper
-   * punch and either advances the quasi-static equilibrium with the
-   * LoadStepper (Newton per increment, NewtonSolver) or integrates the same
-   * force terms with ExplicitDynamics (source/simulator_explicit.cc). Writes
-   * statistics.csv, log.txt and graphics into the output directory. Every
-   * MPI rank holds the whole mesh (parallel::shared::Triangulation, METIS
-   * partition) and assembles its own cells.
+   * Runs one scene: resolves the scene's effects (Effects), builds the
+   * MultiBodySystem (the multi-body mesh, DoFs, and a force term for each
+   * effect that is on: ForceTerm) and the driver of its method. For each load
+   * step it either advances the quasi-static equilibrium with the
+   * LoadStepper (Newton per increment, NewtonSolver; the Simulator is its
+   * IncrementalProblem, source/simulator_implicit.cc) or integrates the same
+   * force terms with the ExplicitDriver. Writes statistics.csv,
+   * particles.csv, log.txt, graphics and checkpoints into the output
+   * directory.
    */
-  class Simulator : private ExplicitSystem, private IncrementalProblem
+  class Simulator : private IncrementalProblem
   {
   public:
     /// Prepare a run: create the output directory and its log.txt (nothing
@@ -101,12 +101,14 @@ namespace densify
     bool
     run();
 
-    /// Use @p scene, built by build_scene() from the same parameters,
-    /// instead of building it again in setup().
+    /// Use @p scene, built by build_scene() from the same parameters, and
+    /// its effects @p scene_effects, resolved by resolve_effects(), instead
+    /// of building and resolving them again in setup().
     void
-    set_scene(Scene scene)
+    set_scene(Scene scene, const Effects &scene_effects)
     {
-      given_scene = std::make_unique<Scene>(std::move(scene));
+      given_scene   = std::make_unique<Scene>(std::move(scene));
+      given_effects = std::make_unique<Effects>(scene_effects);
     }
 
     /// Set up particles, mesh and system without solving; run() calls it
@@ -134,14 +136,14 @@ namespace densify
     const DoFHandler<3> &
     get_dof_handler() const
     {
-      return dof_handler;
+      return system.dof_handler;
     }
 
     /// The displacement vector (mm; locally owned entries).
     const TrilinosWrappers::MPI::Vector &
     displacement() const
     {
-      return solution;
+      return system.solution;
     }
 
     /// Statistics of the steps done so far.
@@ -153,38 +155,37 @@ namespace densify
 
     /// Current volume of each particle (mm^3), on every rank.
     std::vector<double>
-    particle_volumes() const;
+    particle_volumes() const
+    {
+      return system.particle_volumes();
+    }
 
     /// The particles of the scene.
     const std::vector<Particle> &
     get_particles() const
     {
-      return particles;
+      return system.particles;
     }
 
     /// Number of degrees of freedom.
     types::global_dof_index
     n_dofs() const
     {
-      return dof_handler.n_dofs();
+      return system.dof_handler.n_dofs();
     }
 
     /// Normal force (N) of the tool @p kind on each particle now.
     std::vector<double>
     particle_tool_forces(const ToolKind kind) const
     {
-      return tool_contact ?
-               tool_contact->particle_forces(*mapping, solution_ghosted, kind) :
-               std::vector<double>(particles.size(), 0.);
+      return system.particle_tool_forces(kind);
     }
 
     /// Number of particles each particle touches now.
     std::vector<unsigned int>
     contact_partners() const
     {
-      return particle_contact ?
-               particle_contact->contact_partners(*mapping, solution_ghosted) :
-               std::vector<unsigned int>(particles.size(), 0);
+      return system.contact_partners();
     }
 
     /// contact_partners() and the die wall's particle_tool_forces() at the
@@ -195,68 +196,23 @@ namespace densify
 
     /// Rigid translation of each particle: its mean displacement (mm).
     std::vector<Tensor<1, 3>>
-    particle_mean_displacements() const;
+    particle_mean_displacements() const
+    {
+      return system.particle_mean_displacements();
+    }
 
   private:
-    /// Measure every particle (one pass over the cells; on every rank),
-    /// @p with_stress its mean stresses too (a second pass, which evaluates
-    /// the material).
-    std::vector<ParticleMeasure>
-    measure_particles(const bool with_stress = false) const;
-
-    void
-    setup_particles();
-    void
-    setup_mesh();
     void
     setup_system();
-    /// Build the force terms the effects call for, in the order they add
-    /// to the residual.
-    void
-    setup_force_terms(const std::vector<double> &penalty);
     /// (Re)build the sparsity pattern (cells plus the couplings of the force
     /// terms), the tangent and the stabilisation matrix.
     void
     setup_matrix();
 
-    /// Contact forces of the tools and between particles.
-    struct ContactResults
-    {
-      ToolContactResult     tools;
-      ParticleContactResult particles;
-    };
-
-    /// Every force term that is on: the bulk terms, then the others.
-    std::vector<ForceTerm *>
-    force_terms() const
-    {
-      std::vector<ForceTerm *> all = bulk_terms;
-      all.insert(all.end(), other_terms.begin(), other_terms.end());
-      return all;
-    }
-
-    /// The contact results of the last assembly.
-    ContactResults
-    contact_results() const;
     /// The contact results of the last evaluate_constraints().
     ContactResults last_contact;
     /// Output/Verbose: which history points yielded at the last iterate.
     std::vector<char> was_plastic;
-
-    /// The context of an assembly at solution_ghosted.
-    AssemblyContext
-    context(const double tangent_margin = 0.) const;
-
-    /**
-     * Add every force term at solution_ghosted to @p forces (and the
-     * tangent if @p with_matrix), compressed; returns the reference norm of
-     * the relative Newton criterion: the larger of the bulk forces' norm and
-     * the total contact force (N).
-     */
-    double
-    assemble_terms(TrilinosWrappers::MPI::Vector &forces,
-                   const bool                     with_matrix,
-                   const double                   tangent_margin);
 
     // IncrementalProblem (the implicit method)
     Evaluation
@@ -266,7 +222,7 @@ namespace densify
     TrilinosWrappers::MPI::Vector &
     solution_vector() override
     {
-      return solution;
+      return system.solution;
     }
     TrilinosWrappers::MPI::Vector &
     residual_vector() override
@@ -288,7 +244,7 @@ namespace densify
     bool
     start_dependent() const override
     {
-      return particle_contact != nullptr;
+      return system.particle_contact != nullptr;
     }
     std::string
     iteration_details() override;
@@ -308,34 +264,6 @@ namespace densify
     restore_state() override;
     void
     commit() override;
-
-    /// Plan both punches' moves from @p before to @p time (PunchControl::
-    /// plan() with @p gain): a force-controlled punch gives back the other,
-    /// displacement-controlled punch's travel over the move.
-    void
-    plan_punches(const double time, const double before, const double gain);
-
-    /// Set the tools, body force and friction scale for time @p time,
-    /// reached by an increment of @p increment (both methods; the upper
-    /// punch where punch_control has it); returns the larger punch travel
-    /// over the increment (mm).
-    double
-    apply_loads(const double time, const double increment);
-
-    /// A punch's largest speed under force control (mm/s): its Maximum
-    /// speed @p max_speed if positive, or from its displacement history
-    /// @p table.
-    double
-    force_control_speed(const std::vector<std::pair<double, double>> &table,
-                        const double max_speed) const;
-
-    /// Position of the upper punch face at time @p t (mm).
-    double
-    upper_punch_position(const double t) const;
-
-    /// Position of the lower punch face at time @p t (mm).
-    double
-    lower_punch_position(const double t) const;
 
     /// Write the .pvtu of this step and rewrite the .pvd, with the
     /// particles' mean stresses of @p measures.
@@ -425,10 +353,6 @@ namespace densify
     void
     truncate_rows(const std::string &filename, const unsigned int step) const;
 
-    /// Copy solution into the ghosted vector.
-    void
-    update_ghosts();
-
     /// How often the tangent's sparsity pattern was made.
     unsigned int n_matrix_setups = 0;
 
@@ -444,75 +368,16 @@ namespace densify
     ConditionalOStream            pcout;
     TimerOutput                   timer;
 
-    /// The scene given by set_scene(), until setup() takes it.
-    std::unique_ptr<Scene>                       given_scene;
-    std::vector<Particle>                        particles;
-    std::vector<std::shared_ptr<const Material>> particle_material;
-    /// Per particle: the F-bar's weight of the cell's own volume change
-    /// (Mesh/Cell volume stabilisation, NodalAveraging).
-    std::vector<double> cell_volume_weights;
-    /// The barrier against crushed cells (Mesh/Cell volume barrier), per
-    /// particle the material's bulk modulus; off without nodal averaging.
-    CellVolumeBarrier cell_volume_barrier;
-    double            upper_initial = 0.;
-    /// Where the upper punch is: its displacement and force histories.
-    PunchControl punch_control;
-    /// Where the lower punch is (its rise): its histories likewise.
-    PunchControl lower_control;
-    /// Height of the lower punch face at t = 0 (mm).
-    double lower_initial = 0.;
-    double h_min         = 0.;
+    /// The scene and its effects given by set_scene(), until setup() takes
+    /// them.
+    std::unique_ptr<Scene>   given_scene;
+    std::unique_ptr<Effects> given_effects;
+    /// The multi-body system both methods advance.
+    MultiBodySystem system;
 
-    parallel::shared::Triangulation<3> triangulation;
-    std::unique_ptr<FESystem<3>>       fe;
-    std::unique_ptr<MappingFE<3>>      mapping;
-    DoFHandler<3>                      dof_handler;
-    IndexSet                           locally_owned, locally_relevant;
-    /// The ghost entries of solution_ghosted: every DoF when particles can
-    /// touch (masters may lie anywhere), else the locally relevant ones.
-    IndexSet ghosted_dofs;
-
+    /// The implicit method's tangent and residual.
     TrilinosWrappers::SparseMatrix tangent;
-    TrilinosWrappers::MPI::Vector  solution, solution_ghosted, residual;
-    /// solution_ghosted = solution with the communication plan kept.
-    GhostImport ghost_import;
-    /// The solution of the last accepted increment, with ghost entries
-    /// (friction measures slip from it).
-    TrilinosWrappers::MPI::Vector committed_ghosted;
-
-    /// Time and upper punch position of the last accepted increment.
-    double current_time = 0., current_upper = 0.;
-    /// The time of the load being solved for (s).
-    double load_time = 0.;
-    /// The axial (z) translation of the whole compact that the planned
-    /// move imposes (mm): the travel of the punch that moves by its history
-    /// while the other follows it by force control (plan_punches()); 0
-    /// otherwise.
-    double rigid_shift = 0.;
-
-    /// The effects of the scene, resolved once.
-    Effects effects;
-    /// The force terms, each built only if its effect is on (else null).
-    std::unique_ptr<Continuum>       continuum;
-    std::unique_ptr<BodyForce>       body_force;
-    std::unique_ptr<ToolContact>     tool_contact;
-    std::unique_ptr<ParticleContact> particle_contact;
-    std::unique_ptr<PoleSprings>     pole_springs;
-    std::unique_ptr<Stabilisation>   stabilisation;
-    /// The force terms that are on, in the order they add to the residual:
-    /// the bulk (continuum, body force), then the others.
-    std::vector<ForceTerm *> bulk_terms, other_terms;
-    /// Search margin of the particle contact (mm).
-    double search_margin = 0.;
-    /// The scene's body force and its factor against time, and the
-    /// sideways upper punch displacement against time.
-    Tensor<1, 3>                           scene_body_force;
-    std::vector<std::pair<double, double>> body_force_table;
-    std::vector<std::pair<double, double>> lateral_table;
-    /// The die's top edge at t = 0 (infinity: none), and its upward
-    /// displacement against time.
-    double die_top = std::numeric_limits<double>::infinity();
-    std::vector<std::pair<double, double>> die_table;
+    TrilinosWrappers::MPI::Vector  residual;
 
     /// The implicit method: Newton's method, the load stepper, the linear
     /// solver; null with explicit dynamics.
@@ -521,111 +386,8 @@ namespace densify
     std::unique_ptr<LinearSolver> linear_solver;
     double                        last_stabilisation_force = 0.;
 
-    /**
-     * Explicit dynamics: the lumped mass, the integrator and the contact
-     * penalty that fits its stable step; returns the penalty per particle.
-     * @p tangential_ratio as for LumpedMass.
-     */
-    std::vector<double>
-    setup_explicit(const double tangential_ratio);
-
-    /// The explicit counterpart of advance_to(): integrate to @p time (the
-    /// end of load step @p step); forces are the means over the interval.
-    ContactResults
-    advance_explicit(const double       time,
-                     const unsigned int step,
-                     StepStatistics    &s);
-
-    /// The largest squared frequency of the elements (elastic, at the
-    /// current state) with the lumped mass @p mass, by power iteration.
-    double
-    largest_frequency2(const TrilinosWrappers::MPI::Vector &mass);
-
-    // ExplicitSystem
-    double
-    update_mass(const double                   required_step,
-                TrilinosWrappers::MPI::Vector &mass) override;
-    void
-    forces(const TrilinosWrappers::MPI::Vector &u,
-           const double                         scene_time,
-           const double                         scene_increment,
-           const double                         dt,
-           TrilinosWrappers::MPI::Vector       &internal,
-           TrilinosWrappers::MPI::Vector       &external) override;
-    double
-    external_work() const override
-    {
-      return explicit_work.tools + explicit_work.body;
-    }
-
-    std::unique_ptr<LumpedMass> lumped_mass;
-    /// Margin of the measured largest frequency over the power iteration's
-    /// estimate (which approaches it from below).
-    static constexpr double calibration_margin = 1.25;
-    /// Stations between two measurements of the largest frequency at most.
-    static constexpr unsigned int recalibration_interval = 10;
-    /// Mass updates so far (one per station), and the raw cell bound at the
-    /// last measurement of the largest frequency (1/s^2).
-    unsigned int mass_updates     = 0;
-    double       calibrated_bound = 0.;
-    /// The calibration factor of the last measurement. A rise within
-    /// calibration_margin (the mass before it still gives a stable step) is
-    /// approached by at most calibration_rise a station, so that the mass of
-    /// nodes that move with the compact grows over stations, not at once.
-    double calibration_target = 0.;
-    /// The largest growth of the applied calibration factor from one station
-    /// to the next, about calibration_margin^(1 / recalibration_interval).
-    static constexpr double calibration_rise = 1.0226;
-    /// The power iteration's last vector, the start of the next one.
-    TrilinosWrappers::MPI::Vector frequency_mode;
-    /// The explicit run's contact penalty per particle (MPa/mm).
-    std::vector<double> explicit_penalty;
-    /// An upper bound of the contact stiffness a punch meets (N/mm): the
-    /// stiffest particle's penalty over the die's bore, for the mass of a
-    /// punch under force control (PunchControl::drive()).
-    double                            punch_stiffness = 0.;
-    std::unique_ptr<ExplicitDynamics> explicit_dynamics;
-    /// Energy account of the explicit run kept by the system (mJ): work of
-    /// the moving tools and of the body force, friction work, the contact
-    /// springs' elastic energy now, and the energy the multiplier updates
-    /// put into them.
-    struct ExplicitWork
-    {
-      double tools = 0., body = 0., friction = 0., contact_energy = 0.,
-             multipliers = 0.;
-      /// Upper punch force and position, friction and lateral position at
-      /// the last evaluation (for the trapezoidal tool work).
-      double       upper_force = 0., upper_position = 0., lateral = 0.;
-      Tensor<1, 3> upper_friction;
-
-      template <class Archive>
-      void
-      serialize(Archive &archive, const unsigned int /*version*/)
-      {
-        archive &tools &body &friction &contact_energy &multipliers &upper_force
-          &upper_position &lateral &upper_friction;
-      }
-    } explicit_work;
-    /// Time-weighted sums of the contact forces over the current interval
-    /// between stations, of the forces times scene time, and of the
-    /// weights times 1, t and t^2 (the least-squares line at the station).
-    ContactResults        interval_sum, interval_moment;
-    std::array<double, 3> interval_weight = {{0., 0., 0.}};
-    /// Body force vector of the last evaluation and the displacement then
-    /// (body work); the displacement at the last contact search.
-    TrilinosWrappers::MPI::Vector body_forces, body_solution, search_solution;
-    /// The explicit step's plain arrays: the solution's and the committed
-    /// solution's values, and the forces on their way into a residual.
-    AllValues   explicit_values, explicit_committed;
-    LocalForces explicit_forces;
-    /// The contact record of the explicit pass at the station (the scene
-    /// time record_time; negative: no pass records), and whether the last
-    /// station's pass filled it.
-    ContactRecord station_record;
-    double        record_time      = -1.;
-    bool          station_recorded = false;
-    /// The explicit run's last station account.
-    ExplicitDynamics::Account         explicit_account;
+    /// The explicit method's driver; null with the implicit method.
+    std::unique_ptr<ExplicitDriver>   explicit_driver;
     std::vector<StepStatistics>       step_statistics;
     std::unique_ptr<StatisticsWriter> statistics_writer;
     /// particles.csv: per particle and step, volume and mean displacement
