@@ -63,7 +63,6 @@ namespace densify
   Simulator::setup_system()
   {
     system.setup_dofs();
-    residual.reinit(system.locally_owned, comm);
     // the contact penalty of each particle: E / h times the factor, or for
     // explicit dynamics the one that fits the stable step of the lumped mass
     const double tangential_ratio =
@@ -77,83 +76,11 @@ namespace densify
           system.effects.any_friction() ? tangential_ratio : 0.) :
         system.contact_penalty());
     // explicit dynamics has no tangent and no linear solver
-    if (system.effects.method == Method::explicit_dynamics)
+    if (explicit_driver)
       return;
-    setup_matrix();
-
-    NewtonControl newton_control;
-    newton_control.tolerance      = prm.solver.newton_tolerance;
-    newton_control.max_iterations = prm.solver.max_newton_iterations;
-    newton_control.line_search    = system.effects.line_search;
-    newton_control.adaptive_linear_tolerance =
-      prm.solver.adaptive_linear_tolerance;
-    newton_control.linear_tolerance = prm.solver.linear_tolerance;
-    // no node moves by more than half the smallest element size in one
-    // Newton iteration
-    newton_control.step_limit         = 0.5 * system.h_min;
-    newton_control.secant_start       = system.effects.friction_secant_start;
-    newton_control.verbose            = prm.output.verbose;
-    newton_control.continuation       = system.effects.continuation;
-    newton_control.continuation_start = prm.solver.pseudo_mass;
-    // absolute floor: a force far below anything the scene can carry
-    double E_max = 0, D_max = 0;
-    for (unsigned int p = 0; p < system.particles.size(); ++p)
-      {
-        E_max = std::max(E_max, system.particle_material[p]->youngs_modulus());
-        D_max = std::max(D_max, system.particles[p].diameter);
-      }
-    newton_control.floor = 1e-12 * E_max * D_max * D_max;
-    newton = std::make_unique<NewtonSolver>(newton_control, pcout);
-
-    LoadStepperControl stepper_control;
-    stepper_control.step_length       = prm.time.end_time / prm.time.n_steps;
-    stepper_control.max_cutbacks      = prm.time.max_cutbacks;
-    stepper_control.gap_tolerance     = prm.contact.gap_tolerance;
-    stepper_control.max_augmentations = prm.contact.max_augmentations;
-    stepper = std::make_unique<LoadStepper>(stepper_control, *newton, pcout);
-    stepper->setup(system.solution);
-
-    linear_solver =
-      std::make_unique<LinearSolver>(system.effects.linear_solver,
-                                     prm.solver.linear_tolerance,
-                                     prm.solver.max_linear_iterations,
-                                     prm.solver.reuse_amg,
-                                     prm.solver.reproducible,
-                                     timer);
-    linear_solver->setup_null_space(system.dof_handler,
-                                    *system.mapping,
-                                    system.locally_owned);
-  }
-
-
-
-  void
-  Simulator::setup_matrix()
-  {
-    TimerOutput::Scope                t(timer, "Setup: matrix");
-    TrilinosWrappers::SparsityPattern sp(system.locally_owned, comm);
-    DoFTools::make_sparsity_pattern(
-      system.dof_handler, sp, AffineConstraints<double>(), false, this_rank);
-    for (ForceTerm *term : system.bulk_terms)
-      term->add_couplings(sp);
-    for (ForceTerm *term : system.other_terms)
-      term->add_couplings(sp);
-    sp.compress();
-    // the preconditioner (or factorization) refers to the old matrix: free
-    // it before the matrix goes
-    if (linear_solver)
-      linear_solver->rebuild_preconditioner();
-    tangent.reinit(sp);
-    // the size of the tangent decides what the linear solvers cost; the
-    // pattern is made again when contact candidates move out of it
-    if (n_matrix_setups++ == 0 || prm.output.verbose)
-      pcout << "Tangent matrix: " << tangent.n_nonzero_elements()
-            << " entries, "
-            << tangent.n_nonzero_elements() /
-                 std::max<types::global_dof_index>(1, tangent.m())
-            << " per row" << std::endl;
-    if (system.stabilisation)
-      system.stabilisation->reinit(sp, *system.mapping);
+    implicit_driver =
+      std::make_unique<ImplicitDriver>(prm, system, pcout, timer);
+    implicit_driver->setup();
   }
 
 
@@ -289,9 +216,8 @@ namespace densify
         const double   upper_before = system.upper_punch_position(before);
         const double   lower_before = system.lower_punch_position(before);
         StepStatistics s;
-        s.step                   = step;
-        s.time                   = time;
-        last_stabilisation_force = 0;
+        s.step = step;
+        s.time = time;
         ContactResults results;
         try
           {
@@ -303,8 +229,7 @@ namespace densify
             else
               {
                 StepCounts counts;
-                stepper->advance_to(
-                  *this, system.current_time, time, step, counts);
+                results = implicit_driver->advance(time, step, counts);
                 s.newton_iterations        = counts.newton_iterations;
                 s.linear_iterations        = counts.linear_iterations;
                 s.augmentations            = counts.augmentations;
@@ -313,7 +238,6 @@ namespace densify
                 s.failed_checks            = counts.failed_checks;
                 s.failed_newton_iterations = counts.failed_newton_iterations;
                 s.increments               = counts.increments;
-                results                    = last_contact;
               }
           }
         catch (const ConvergenceError &e)
@@ -384,7 +308,8 @@ namespace densify
         s.lower_punch_force     = contact.normal_force[lower_kind];
         s.die_wall_force        = contact.axial_force[die_kind];
         s.die_wall_radial_force = contact.normal_force[die_kind];
-        s.stabilisation_force   = last_stabilisation_force;
+        s.stabilisation_force =
+          implicit_driver ? implicit_driver->stabilisation_force() : 0.;
         s.max_penetration =
           std::max(contact.max_penetration, results.particles.max_penetration);
         s.particle_contact_force = results.particles.normal_force;

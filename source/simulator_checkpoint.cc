@@ -268,18 +268,17 @@ namespace densify
       std::vector<double>             solution_values =
         owned_values(system.solution, system.locally_owned);
       // the load stepper's predictor and increment (implicit method)
-      std::vector<double> increment_values =
-        stepper ? owned_values(stepper->last_increment, system.locally_owned) :
-                  std::vector<double>(system.locally_owned.n_elements(), 0.);
-      double       next_increment = stepper ? stepper->next_increment : 0.;
-      double       last_punch_increment = stepper ? stepper->last_travel : 0.;
-      unsigned int last_step            = step;
-      double       wall                 = wall_seconds;
-      double       time                 = system.current_time;
-      double       upper                = system.current_upper;
-      archive &header &last_step &time &upper &next_increment
-        &last_punch_increment &wall &solution_values &increment_values
-          &pvd_records;
+      ImplicitDriver::Saved implicit;
+      if (implicit_driver)
+        implicit = implicit_driver->saved();
+      else
+        implicit.increment.assign(system.locally_owned.n_elements(), 0.);
+      unsigned int                             last_step = step;
+      double                                   wall      = wall_seconds;
+      double                                   time      = system.current_time;
+      double                                   upper     = system.current_upper;
+      archive &header &last_step &time &upper &implicit.next_increment &implicit
+        .last_travel &wall &solution_values &implicit.increment &pvd_records;
       // explicit dynamics: the integrator, the loads' account and the
       // mass-scaling factors
       ExplicitDriver::Saved saved;
@@ -424,8 +423,8 @@ namespace densify
     CheckpointHeader      header;
     unsigned int          step = 0;
     double                wall = 0.;
-    std::vector<double>   solution_values, increment_values;
-    double                next_increment = 0., last_punch_increment = 0.;
+    std::vector<double>   solution_values;
+    ImplicitDriver::Saved implicit;
     ExplicitDriver::Saved saved;
     try
       {
@@ -479,11 +478,13 @@ namespace densify
                            std::to_string(header.n_dofs) +
                            " DoFs) is not the one this scene makes; run "
                            "without --resume");
-        archive &step &system.current_time &system
-          .current_upper &next_increment &last_punch_increment &wall
-            &solution_values &increment_values &pvd_records &saved
-          .dynamics &saved.work &saved.factors &saved.calibration &saved
-          .bound &saved.updates &saved.mode &saved.n_explicit;
+        double                     &time  = system.current_time;
+        double                     &upper = system.current_upper;
+        archive &step &time &upper &implicit.next_increment &implicit
+          .last_travel &wall &solution_values               &implicit
+          .increment &pvd_records &saved.dynamics &saved.work &saved
+          .factors &saved.calibration &saved.bound &saved.updates &saved
+          .mode &saved.n_explicit;
         if (step >= prm.time.n_steps)
           throw InputError(
             "--resume: the checkpoint is of the run's last step " +
@@ -532,14 +533,8 @@ namespace densify
       }
 
     set_owned_values(solution_values, system.locally_owned, system.solution);
-    if (stepper)
-      {
-        set_owned_values(increment_values,
-                         system.locally_owned,
-                         stepper->last_increment);
-        stepper->next_increment = next_increment;
-        stepper->last_travel    = last_punch_increment;
-      }
+    if (implicit_driver)
+      implicit_driver->restore(implicit);
     wall_before              = wall;
     system.committed_ghosted = system.solution;
     system.update_ghosts();
@@ -548,8 +543,8 @@ namespace densify
         // the search of the loaded configuration, and its matrix pattern
         system.particle_contact->update_search(system.solution_ghosted,
                                                system.search_margin);
-        if (system.effects.method == Method::implicit)
-          setup_matrix();
+        if (implicit_driver)
+          implicit_driver->setup_matrix();
       }
     if (explicit_driver)
       explicit_driver->restore(saved, system.current_time);

@@ -21,7 +21,7 @@
 //    miss() is 0 (a servo press approaches at its speed, by intent);
 // 6. a window that ends within a station: the station's end travel is the
 //    history's, shifted where the window left the punch.
-#include <densify/drivers/punch_control.h>
+#include <densify/contact/punch_control.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>

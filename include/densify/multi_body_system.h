@@ -23,8 +23,8 @@
 #include <densify/assembly/pole_springs.h>
 #include <densify/assembly/stabilisation.h>
 #include <densify/contact/particle_contact.h>
+#include <densify/contact/punch_control.h>
 #include <densify/contact/tool_contact.h>
-#include <densify/drivers/punch_control.h>
 #include <densify/effects.h>
 #include <densify/geometry/particles.h>
 #include <densify/material/material.h>

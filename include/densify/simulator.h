@@ -3,34 +3,14 @@
 #pragma once
 
 #include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/index_set.h>
 #include <deal.II/base/timer.h>
 
-#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <deal.II/dofs/dof_handler.h>
-
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_fe.h>
-
-#include <deal.II/distributed/shared_tria.h>
-
-#include <densify/assembly/all_values.h>
-#include <densify/assembly/body_force.h>
-#include <densify/assembly/continuum.h>
-#include <densify/assembly/lumped_mass.h>
-#include <densify/assembly/pole_springs.h>
-#include <densify/assembly/stabilisation.h>
-#include <densify/contact/particle_contact.h>
-#include <densify/contact/tool_contact.h>
 #include <densify/drivers/explicit_driver.h>
-#include <densify/drivers/load_stepper.h>
-#include <densify/drivers/punch_control.h>
+#include <densify/drivers/implicit_driver.h>
 #include <densify/effects.h>
-#include <densify/geometry/particles.h>
 #include <densify/material/j2_plasticity.h>
-#include <densify/material/material.h>
 #include <densify/multi_body_system.h>
 #include <densify/parameters.h>
 #include <densify/postprocess/cell_volume.h>
@@ -39,7 +19,6 @@
 #include <densify/postprocess/quasi_static_guard.h>
 #include <densify/postprocess/statistics.h>
 #include <densify/scene.h>
-#include <densify/solvers/linear_solver.h>
 
 #include <array>
 #include <csignal>
@@ -68,15 +47,14 @@ namespace densify
   /**
    * Runs one scene: resolves the scene's effects (Effects), builds the
    * MultiBodySystem (the multi-body mesh, DoFs, and a force term for each
-   * effect that is on: ForceTerm) and the driver of its method. For each load
-   * step it either advances the quasi-static equilibrium with the
-   * LoadStepper (Newton per increment, NewtonSolver; the Simulator is its
-   * IncrementalProblem, source/simulator_implicit.cc) or integrates the same
-   * force terms with the ExplicitDriver. Writes statistics.csv,
-   * particles.csv, log.txt, graphics and checkpoints into the output
-   * directory.
+   * effect that is on: ForceTerm) and the driver of its method, the
+   * ImplicitDriver (Newton per increment through the LoadStepper) or the
+   * ExplicitDriver (explicit dynamics), chosen once. For each load step it
+   * lets the driver advance the system to the step's end, then measures,
+   * reports and checkpoints: statistics.csv, particles.csv, log.txt,
+   * graphics and checkpoints in the output directory.
    */
-  class Simulator : private IncrementalProblem
+  class Simulator
   {
   public:
     /// Prepare a run: create the output directory and its log.txt (nothing
@@ -129,7 +107,7 @@ namespace densify
     const std::vector<double> &
     newton_residuals() const
     {
-      return newton->residuals();
+      return implicit_driver->newton_residuals();
     }
 
     /// The DoF handler of the displacement.
@@ -202,68 +180,11 @@ namespace densify
     }
 
   private:
+    /// The DoFs, the driver of the method, and the force terms with the
+    /// contact penalty the driver gives.
     void
     setup_system();
-    /// (Re)build the sparsity pattern (cells plus the couplings of the force
-    /// terms), the tangent and the stabilisation matrix.
-    void
-    setup_matrix();
 
-    /// The contact results of the last evaluate_constraints().
-    ContactResults last_contact;
-    /// Output/Verbose: which history points yielded at the last iterate.
-    std::vector<char> was_plastic;
-
-    // IncrementalProblem (the implicit method)
-    Evaluation
-    assemble(const bool   with_tangent,
-             const double tangent_margin,
-             const bool   search) override;
-    TrilinosWrappers::MPI::Vector &
-    solution_vector() override
-    {
-      return system.solution;
-    }
-    TrilinosWrappers::MPI::Vector &
-    residual_vector() override
-    {
-      return residual;
-    }
-    unsigned int
-    solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
-                 TrilinosWrappers::MPI::Vector       &du,
-                 const double relative_tolerance) override;
-    void
-    add_pseudo_mass(const double factor) override;
-    void
-    begin_solve() override;
-    void
-    set_secant_tangent(const bool on) override;
-    unsigned int
-    after_update() override;
-    bool
-    start_dependent() const override
-    {
-      return system.particle_contact != nullptr;
-    }
-    std::string
-    iteration_details() override;
-    double
-    set_loads(const double time, const double increment) override;
-    bool
-    loads_reached(double &scale) override;
-    bool
-    rigid_predictor(TrilinosWrappers::MPI::Vector &increment) override;
-    double
-    evaluate_constraints() override;
-    void
-    update_multipliers() override;
-    void
-    save_state() override;
-    void
-    restore_state() override;
-    void
-    commit() override;
 
     /// Write the .pvtu of this step and rewrite the .pvd, with the
     /// particles' mean stresses of @p measures.
@@ -353,9 +274,6 @@ namespace densify
     void
     truncate_rows(const std::string &filename, const unsigned int step) const;
 
-    /// How often the tangent's sparsity pattern was made.
-    unsigned int n_matrix_setups = 0;
-
     const Parameters &prm;
     /// How the run may stop early and continue.
     const RunControl control;
@@ -375,17 +293,8 @@ namespace densify
     /// The multi-body system both methods advance.
     MultiBodySystem system;
 
-    /// The implicit method's tangent and residual.
-    TrilinosWrappers::SparseMatrix tangent;
-    TrilinosWrappers::MPI::Vector  residual;
-
-    /// The implicit method: Newton's method, the load stepper, the linear
-    /// solver; null with explicit dynamics.
-    std::unique_ptr<NewtonSolver> newton;
-    std::unique_ptr<LoadStepper>  stepper;
-    std::unique_ptr<LinearSolver> linear_solver;
-    double                        last_stabilisation_force = 0.;
-
+    /// The implicit method's driver; null with the explicit method.
+    std::unique_ptr<ImplicitDriver> implicit_driver;
     /// The explicit method's driver; null with the implicit method.
     std::unique_ptr<ExplicitDriver>   explicit_driver;
     std::vector<StepStatistics>       step_statistics;

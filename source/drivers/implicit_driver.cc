@@ -1,14 +1,16 @@
-// The Simulator as the problem of the implicit method: the residual and
-// tangent of the force terms for the NewtonSolver, the loads, the contact
-// augmentation and the commit and roll-back of an increment for the
-// LoadStepper.
+// The implicit method's driver: the multi-body system as the problem of the
+// LoadStepper and the NewtonSolver (residual and tangent of the force
+// terms, linear solves, loads, contact augmentation, commit and roll-back of
+// an increment).
 #include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/component_mask.h>
 
-#include <densify/simulator.h>
+#include <densify/drivers/implicit_driver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +18,149 @@
 
 namespace densify
 {
+  ImplicitDriver::ImplicitDriver(const Parameters   &parameters,
+                                 MultiBodySystem    &system,
+                                 ConditionalOStream &pcout,
+                                 TimerOutput        &timer)
+    : prm(parameters)
+    , system(system)
+    , pcout(pcout)
+    , timer(timer)
+  {}
+
+
+
+  void
+  ImplicitDriver::setup()
+  {
+    residual.reinit(system.locally_owned, system.comm);
+    setup_matrix();
+
+    NewtonControl newton_control;
+    newton_control.tolerance      = prm.solver.newton_tolerance;
+    newton_control.max_iterations = prm.solver.max_newton_iterations;
+    newton_control.line_search    = system.effects.line_search;
+    newton_control.adaptive_linear_tolerance =
+      prm.solver.adaptive_linear_tolerance;
+    newton_control.linear_tolerance = prm.solver.linear_tolerance;
+    // no node moves by more than half the smallest element size in one
+    // Newton iteration
+    newton_control.step_limit         = 0.5 * system.h_min;
+    newton_control.secant_start       = system.effects.friction_secant_start;
+    newton_control.verbose            = prm.output.verbose;
+    newton_control.continuation       = system.effects.continuation;
+    newton_control.continuation_start = prm.solver.pseudo_mass;
+    // absolute floor: a force far below anything the scene can carry
+    double E_max = 0, D_max = 0;
+    for (unsigned int p = 0; p < system.particles.size(); ++p)
+      {
+        E_max = std::max(E_max, system.particle_material[p]->youngs_modulus());
+        D_max = std::max(D_max, system.particles[p].diameter);
+      }
+    newton_control.floor = 1e-12 * E_max * D_max * D_max;
+    newton = std::make_unique<NewtonSolver>(newton_control, pcout);
+
+    LoadStepperControl stepper_control;
+    stepper_control.step_length       = prm.time.end_time / prm.time.n_steps;
+    stepper_control.max_cutbacks      = prm.time.max_cutbacks;
+    stepper_control.gap_tolerance     = prm.contact.gap_tolerance;
+    stepper_control.max_augmentations = prm.contact.max_augmentations;
+    stepper = std::make_unique<LoadStepper>(stepper_control, *newton, pcout);
+    stepper->setup(system.solution);
+
+    linear_solver =
+      std::make_unique<LinearSolver>(system.effects.linear_solver,
+                                     prm.solver.linear_tolerance,
+                                     prm.solver.max_linear_iterations,
+                                     prm.solver.reuse_amg,
+                                     prm.solver.reproducible,
+                                     timer);
+    linear_solver->setup_null_space(system.dof_handler,
+                                    *system.mapping,
+                                    system.locally_owned);
+  }
+
+
+
+  void
+  ImplicitDriver::setup_matrix()
+  {
+    TimerOutput::Scope                t(timer, "Setup: matrix");
+    TrilinosWrappers::SparsityPattern sp(system.locally_owned, system.comm);
+    DoFTools::make_sparsity_pattern(system.dof_handler,
+                                    sp,
+                                    AffineConstraints<double>(),
+                                    false,
+                                    Utilities::MPI::this_mpi_process(
+                                      system.comm));
+    for (ForceTerm *term : system.bulk_terms)
+      term->add_couplings(sp);
+    for (ForceTerm *term : system.other_terms)
+      term->add_couplings(sp);
+    sp.compress();
+    // the preconditioner (or factorization) refers to the old matrix: free
+    // it before the matrix goes
+    if (linear_solver)
+      linear_solver->rebuild_preconditioner();
+    tangent.reinit(sp);
+    // the size of the tangent decides what the linear solvers cost; the
+    // pattern is made again when contact candidates move out of it
+    if (n_matrix_setups++ == 0 || prm.output.verbose)
+      pcout << "Tangent matrix: " << tangent.n_nonzero_elements()
+            << " entries, "
+            << tangent.n_nonzero_elements() /
+                 std::max<types::global_dof_index>(1, tangent.m())
+            << " per row" << std::endl;
+    if (system.stabilisation)
+      system.stabilisation->reinit(sp, *system.mapping);
+  }
+
+
+
+  ContactResults
+  ImplicitDriver::advance(const double       time,
+                          const unsigned int step,
+                          StepCounts        &counts)
+  {
+    last_stabilisation_force = 0.;
+    stepper->advance_to(*this, system.current_time, time, step, counts);
+    return last_contact;
+  }
+
+
+
+  ImplicitDriver::Saved
+  ImplicitDriver::saved() const
+  {
+    Saved saved;
+    saved.increment.reserve(system.locally_owned.n_elements());
+    for (const types::global_dof_index i : system.locally_owned)
+      saved.increment.push_back(stepper->last_increment[i]);
+    saved.next_increment = stepper->next_increment;
+    saved.last_travel    = stepper->last_travel;
+    return saved;
+  }
+
+
+
+  void
+  ImplicitDriver::restore(const Saved &saved)
+  {
+    AssertDimension(saved.increment.size(), system.locally_owned.n_elements());
+    unsigned int k = 0;
+    for (const types::global_dof_index i : system.locally_owned)
+      stepper->last_increment[i] = saved.increment[k++];
+    stepper->last_increment.compress(VectorOperation::insert);
+    stepper->next_increment = saved.next_increment;
+    stepper->last_travel    = saved.last_travel;
+  }
+
+
+
   NonlinearProblem::Evaluation
-  Simulator::assemble(const bool   with_matrix,
-                      const double tangent_margin,
-                      const bool   search)
+  ImplicitDriver::assemble(const bool   with_matrix,
+                           const double tangent_margin,
+                           const bool   search)
   {
     TimerOutput::Scope t(timer,
                          with_matrix ? "Assembly: tangent+residual" :
@@ -60,9 +201,9 @@ namespace densify
 
 
   unsigned int
-  Simulator::solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
-                          TrilinosWrappers::MPI::Vector       &du,
-                          const double relative_tolerance)
+  ImplicitDriver::solve_linear(const TrilinosWrappers::MPI::Vector &rhs,
+                               TrilinosWrappers::MPI::Vector       &du,
+                               const double relative_tolerance)
   {
     const unsigned int factorized = linear_solver->n_factorizations();
     const unsigned int iterations =
@@ -78,7 +219,7 @@ namespace densify
 
 
   void
-  Simulator::add_pseudo_mass(const double factor)
+  ImplicitDriver::add_pseudo_mass(const double factor)
   {
     Assert(system.stabilisation, ExcInternalError());
     system.stabilisation->add_scaled(tangent, factor);
@@ -87,7 +228,7 @@ namespace densify
 
 
   void
-  Simulator::begin_solve()
+  ImplicitDriver::begin_solve()
   {
     // each Newton solve starts from the closest master facets, assigned
     // before its first assembly; within it a slave point keeps its facet
@@ -104,7 +245,7 @@ namespace densify
 
 
   void
-  Simulator::set_secant_tangent(const bool on)
+  ImplicitDriver::set_secant_tangent(const bool on)
   {
     if (system.tool_contact)
       system.tool_contact->set_slip_secant(on);
@@ -115,7 +256,7 @@ namespace densify
 
 
   unsigned int
-  Simulator::after_update()
+  ImplicitDriver::after_update()
   {
     system.update_ghosts();
     return system.particle_contact ?
@@ -127,7 +268,7 @@ namespace densify
 
 
   std::string
-  Simulator::iteration_details()
+  ImplicitDriver::iteration_details()
   {
     if (!system.continuum->has_history())
       return "";
@@ -151,15 +292,15 @@ namespace densify
             changed += (plastic != was_plastic[i]);
             was_plastic[i] = plastic;
           }
-    return ", yielding points " + std::to_string(Utilities::MPI::sum(n, comm)) +
-           " (changed " + std::to_string(Utilities::MPI::sum(changed, comm)) +
-           ")";
+    return ", yielding points " +
+           std::to_string(Utilities::MPI::sum(n, system.comm)) + " (changed " +
+           std::to_string(Utilities::MPI::sum(changed, system.comm)) + ")";
   }
 
 
 
   double
-  Simulator::set_loads(const double time, const double increment)
+  ImplicitDriver::set_loads(const double time, const double increment)
   {
     system.plan_punches(time, time - increment, 1.);
     return system.apply_loads(time, increment);
@@ -168,7 +309,7 @@ namespace densify
 
 
   bool
-  Simulator::rigid_predictor(TrilinosWrappers::MPI::Vector &increment)
+  ImplicitDriver::rigid_predictor(TrilinosWrappers::MPI::Vector &increment)
   {
     if (system.rigid_shift == 0.)
       return false;
@@ -184,7 +325,7 @@ namespace densify
 
 
   bool
-  Simulator::loads_reached(double &scale)
+  ImplicitDriver::loads_reached(double &scale)
   {
     const auto &force = last_contact.tools.normal_force;
     // each punch's correction from its own force (a punch whose move stands
@@ -207,7 +348,7 @@ namespace densify
 
 
   double
-  Simulator::evaluate_constraints()
+  ImplicitDriver::evaluate_constraints()
   {
     TimerOutput::Scope t(timer, "Contact: multipliers");
     ContactResults     contact;
@@ -226,7 +367,7 @@ namespace densify
 
 
   void
-  Simulator::update_multipliers()
+  ImplicitDriver::update_multipliers()
   {
     TimerOutput::Scope t(timer, "Contact: multipliers");
     if (system.tool_contact)
@@ -240,7 +381,7 @@ namespace densify
 
 
   void
-  Simulator::save_state()
+  ImplicitDriver::save_state()
   {
     for (ForceTerm *term : system.other_terms)
       term->save();
@@ -249,7 +390,7 @@ namespace densify
 
 
   void
-  Simulator::restore_state()
+  ImplicitDriver::restore_state()
   {
     for (ForceTerm *term : system.other_terms)
       term->restore();
@@ -259,7 +400,7 @@ namespace densify
 
 
   void
-  Simulator::commit()
+  ImplicitDriver::commit()
   {
     // the history of the material and of friction
     system.update_ghosts();

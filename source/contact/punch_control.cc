@@ -1,5 +1,5 @@
 // A punch's control by displacement and force histories.
-#include <densify/drivers/punch_control.h>
+#include <densify/contact/punch_control.h>
 #include <densify/parameters.h>
 
 #include <algorithm>
