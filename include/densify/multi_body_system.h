@@ -52,9 +52,11 @@ namespace densify
    * METIS partition, every rank holding the whole mesh and assembling its own
    * cells), the DoFs with no DoF shared between particles, the displacement,
    * the force terms that the scene's effects call for (each built only if its
-   * effect is on), and the tools' positions and loads over time. It knows
-   * no solution method: the drivers (the LoadStepper's Newton steps,
-   * ExplicitDynamics) read and write its state through the Simulator.
+   * effect is on), and the tools' positions and loads over time. It does
+   * not advance itself: the ImplicitDriver and the ExplicitDriver read and
+   * write its state. Effects::method decides only which terms it builds
+   * (no pole springs or stabilisation under explicit dynamics), the
+   * contact multipliers' relaxation and the punches' dynamic force control.
    */
   class MultiBodySystem
   {
