@@ -63,24 +63,16 @@ namespace densify
   Simulator::setup_system()
   {
     system.setup_dofs();
-    // the contact penalty of each particle: E / h times the factor, or for
-    // explicit dynamics the one that fits the stable step of the lumped mass
-    const double tangential_ratio =
-      prm.contact.tangential_penalty_factor / prm.contact.penalty_factor;
+    // the driver of the method; the force terms take the contact penalty
+    // it gives (for explicit dynamics the one that fits the stable step of
+    // the lumped mass)
     if (system.effects.method == Method::explicit_dynamics)
-      explicit_driver = std::make_unique<ExplicitDriver>(
+      driver = std::make_unique<ExplicitDriver>(
         prm, system, pcout, timer, this_rank == 0 ? &log_file : nullptr);
-    system.setup_force_terms(
-      explicit_driver ?
-        explicit_driver->setup(
-          system.effects.any_friction() ? tangential_ratio : 0.) :
-        system.contact_penalty());
-    // explicit dynamics has no tangent and no linear solver
-    if (explicit_driver)
-      return;
-    implicit_driver =
-      std::make_unique<ImplicitDriver>(prm, system, pcout, timer);
-    implicit_driver->setup();
+    else
+      driver = std::make_unique<ImplicitDriver>(prm, system, pcout, timer);
+    system.setup_force_terms(driver->contact_penalty());
+    driver->setup();
   }
 
 
@@ -88,8 +80,7 @@ namespace densify
   std::pair<std::vector<unsigned int>, std::vector<double>>
   Simulator::station_contacts() const
   {
-    const ContactRecord *record =
-      explicit_driver ? explicit_driver->station_record() : nullptr;
+    const ContactRecord *record = driver->station_record();
     if (record == nullptr)
       return {contact_partners(), particle_tool_forces(ToolKind::die_wall)};
     std::vector<double> die_force = record->die_force;
@@ -169,8 +160,7 @@ namespace densify
     // files' rows up to that step
     // at rest at the start (or at the checkpoint's state, which
     // read_checkpoint() then restores)
-    if (explicit_driver)
-      explicit_driver->start();
+    driver->start();
     const unsigned int first_step = control.resume ? read_checkpoint() + 1 : 1;
     const std::string  statistics_name =
       prm.output.directory + "/statistics.csv";
@@ -221,24 +211,7 @@ namespace densify
         ContactResults results;
         try
           {
-            if (explicit_driver)
-              {
-                results      = explicit_driver->advance(time);
-                s.increments = explicit_driver->account().interval_steps;
-              }
-            else
-              {
-                StepCounts counts;
-                results = implicit_driver->advance(time, step, counts);
-                s.newton_iterations        = counts.newton_iterations;
-                s.linear_iterations        = counts.linear_iterations;
-                s.augmentations            = counts.augmentations;
-                s.cutbacks                 = counts.cutbacks;
-                s.continuations            = counts.continuations;
-                s.failed_checks            = counts.failed_checks;
-                s.failed_newton_iterations = counts.failed_newton_iterations;
-                s.increments               = counts.increments;
-              }
+            results = driver->advance(time, step, s);
           }
         catch (const ConvergenceError &e)
           {
@@ -308,8 +281,6 @@ namespace densify
         s.lower_punch_force     = contact.normal_force[lower_kind];
         s.die_wall_force        = contact.axial_force[die_kind];
         s.die_wall_radial_force = contact.normal_force[die_kind];
-        s.stabilisation_force =
-          implicit_driver ? implicit_driver->stabilisation_force() : 0.;
         s.max_penetration =
           std::max(contact.max_penetration, results.particles.max_penetration);
         s.particle_contact_force = results.particles.normal_force;
@@ -371,25 +342,6 @@ namespace densify
                                *system.mapping,
                                system.solution_ghosted);
         s.min_cell_volume_ratio = smallest.ratio;
-        if (explicit_driver)
-          {
-            const ExplicitDynamics::Account    &a = explicit_driver->account();
-            const ExplicitDriver::ExplicitWork &w = explicit_driver->work();
-            s.explicit_steps                      = a.steps;
-            s.time_step                           = a.step;
-            s.kinetic_energy                      = a.kinetic;
-            s.internal_work                       = a.internal;
-            s.damping_work                        = a.damping;
-            s.friction_work                       = w.friction;
-            s.contact_energy                      = w.contact_energy;
-            s.external_work                       = w.tools + w.body;
-            s.multiplier_work                     = w.multipliers;
-            s.added_mass = explicit_driver->added_mass_fraction();
-            s.energy_balance =
-              s.external_work + s.multiplier_work -
-              (s.kinetic_energy + s.internal_work + s.damping_work +
-               s.friction_work + s.contact_energy);
-          }
 
         if (prm.output.interval > 0 &&
             (step % prm.output.interval == 0 || step == n_steps))
@@ -415,7 +367,7 @@ namespace densify
         // are equal while a station's are not (Explicit/End speed fraction)
         const auto work = [&](const unsigned int k) {
           const double tau = prm.time.end_time * k / n_steps;
-          return explicit_driver ? explicit_driver->physical_time(tau) : tau;
+          return driver->physical_time(tau);
         };
         const double done = work(step) - work(first_step - 1);
         const double left =

@@ -269,8 +269,8 @@ namespace densify
         owned_values(system.solution, system.locally_owned);
       // the load stepper's predictor and increment (implicit method)
       ImplicitDriver::Saved implicit;
-      if (implicit_driver)
-        implicit = implicit_driver->saved();
+      if (const ImplicitDriver *d = implicit_driver())
+        implicit = d->saved();
       else
         implicit.increment.assign(system.locally_owned.n_elements(), 0.);
       unsigned int                             last_step = step;
@@ -282,8 +282,8 @@ namespace densify
       // explicit dynamics: the integrator, the loads' account and the
       // mass-scaling factors
       ExplicitDriver::Saved saved;
-      if (explicit_driver)
-        saved = explicit_driver->saved();
+      if (const ExplicitDriver *d = explicit_driver())
+        saved = d->saved();
       else
         saved.n_explicit = prm.explicit_dynamics.n_steps;
       archive &saved.dynamics &saved.work &saved.factors &saved
@@ -533,8 +533,8 @@ namespace densify
       }
 
     set_owned_values(solution_values, system.locally_owned, system.solution);
-    if (implicit_driver)
-      implicit_driver->restore(implicit);
+    if (ImplicitDriver *d = implicit_driver())
+      d->restore(implicit);
     wall_before              = wall;
     system.committed_ghosted = system.solution;
     system.update_ghosts();
@@ -543,11 +543,11 @@ namespace densify
         // the search of the loaded configuration, and its matrix pattern
         system.particle_contact->update_search(system.solution_ghosted,
                                                system.search_margin);
-        if (implicit_driver)
-          implicit_driver->setup_matrix();
+        if (ImplicitDriver *d = implicit_driver())
+          d->setup_matrix();
       }
-    if (explicit_driver)
-      explicit_driver->restore(saved, system.current_time);
+    if (ExplicitDriver *d = explicit_driver())
+      d->restore(saved, system.current_time);
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none
     graphics.set_records(pvd_records);

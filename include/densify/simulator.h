@@ -107,7 +107,7 @@ namespace densify
     const std::vector<double> &
     newton_residuals() const
     {
-      return implicit_driver->newton_residuals();
+      return implicit_driver()->newton_residuals();
     }
 
     /// The DoF handler of the displacement.
@@ -293,10 +293,23 @@ namespace densify
     /// The multi-body system both methods advance.
     MultiBodySystem system;
 
-    /// The implicit method's driver; null with the explicit method.
-    std::unique_ptr<ImplicitDriver> implicit_driver;
-    /// The explicit method's driver; null with the implicit method.
-    std::unique_ptr<ExplicitDriver>   explicit_driver;
+    /// The driver of the scene's method, chosen once in setup_system().
+    std::unique_ptr<Driver> driver;
+
+    /// The driver as the implicit one (null with another method), for
+    /// what only it has (its checkpoint state, Newton's residuals).
+    ImplicitDriver *
+    implicit_driver() const
+    {
+      return dynamic_cast<ImplicitDriver *>(driver.get());
+    }
+
+    /// The driver as the explicit one (null with another method).
+    ExplicitDriver *
+    explicit_driver() const
+    {
+      return dynamic_cast<ExplicitDriver *>(driver.get());
+    }
     std::vector<StepStatistics>       step_statistics;
     std::unique_ptr<StatisticsWriter> statistics_writer;
     /// particles.csv: per particle and step, volume and mean displacement

@@ -30,8 +30,13 @@ namespace densify
 
 
   std::vector<double>
-  ExplicitDriver::setup(const double tangential_ratio)
+  ExplicitDriver::contact_penalty()
   {
+    // the tangential springs' share of the stable step, where friction acts
+    const double tangential_ratio =
+      system.effects.any_friction() ?
+        prm.contact.tangential_penalty_factor / prm.contact.penalty_factor :
+        0.;
     lumped_mass = std::make_unique<LumpedMass>(system.dof_handler,
                                                system.particle_material,
                                                system.effects.mass_scaling,
@@ -479,7 +484,9 @@ namespace densify
 
 
   ContactResults
-  ExplicitDriver::advance(const double time)
+  ExplicitDriver::advance(const double time,
+                          const unsigned int /*step*/,
+                          StepStatistics &s)
   {
     interval_sum    = ContactResults();
     interval_moment = ContactResults();
@@ -537,6 +544,23 @@ namespace densify
       fit.tools.normal_force[static_cast<unsigned int>(ToolKind::upper_punch)]);
     system.lower_control.accept(
       fit.tools.normal_force[static_cast<unsigned int>(ToolKind::lower_punch)]);
+    // the explicit columns of the station's statistics
+    const ExplicitDynamics::Account &a = explicit_account;
+    const ExplicitWork              &w = explicit_work;
+    s.increments                       = a.interval_steps;
+    s.explicit_steps                   = a.steps;
+    s.time_step                        = a.step;
+    s.kinetic_energy                   = a.kinetic;
+    s.internal_work                    = a.internal;
+    s.damping_work                     = a.damping;
+    s.friction_work                    = w.friction;
+    s.contact_energy                   = w.contact_energy;
+    s.external_work                    = w.tools + w.body;
+    s.multiplier_work                  = w.multipliers;
+    s.added_mass                       = lumped_mass->added_mass_fraction();
+    s.energy_balance                   = s.external_work + s.multiplier_work -
+                       (s.kinetic_energy + s.internal_work + s.damping_work +
+                        s.friction_work + s.contact_energy);
     return fit;
   }
 } // namespace densify

@@ -120,10 +120,20 @@ namespace densify
   ContactResults
   ImplicitDriver::advance(const double       time,
                           const unsigned int step,
-                          StepCounts        &counts)
+                          StepStatistics    &s)
   {
     last_stabilisation_force = 0.;
+    StepCounts counts;
     stepper->advance_to(*this, system.current_time, time, step, counts);
+    s.newton_iterations        = counts.newton_iterations;
+    s.linear_iterations        = counts.linear_iterations;
+    s.augmentations            = counts.augmentations;
+    s.cutbacks                 = counts.cutbacks;
+    s.continuations            = counts.continuations;
+    s.failed_checks            = counts.failed_checks;
+    s.failed_newton_iterations = counts.failed_newton_iterations;
+    s.increments               = counts.increments;
+    s.stabilisation_force      = last_stabilisation_force;
     return last_contact;
   }
 

@@ -10,6 +10,7 @@
 
 #include <densify/assembly/all_values.h>
 #include <densify/assembly/lumped_mass.h>
+#include <densify/drivers/driver.h>
 #include <densify/drivers/explicit_dynamics.h>
 #include <densify/multi_body_system.h>
 #include <densify/parameters.h>
@@ -30,7 +31,7 @@ namespace densify
    * keeps the energy account, and gives each station its forces from the
    * least-squares line through their values over the interval.
    */
-  class ExplicitDriver : public ExplicitSystem
+  class ExplicitDriver : public Driver, public ExplicitSystem
   {
   public:
     /// Energy account of the explicit run kept by the driver (mJ): work of
@@ -64,21 +65,23 @@ namespace densify
 
     /**
      * The lumped mass, the integrator and the contact penalty that fits its
-     * stable step; returns the penalty per particle. @p tangential_ratio as
-     * for LumpedMass.
+     * stable step; returns the penalty per particle.
      */
     std::vector<double>
-    setup(const double tangential_ratio);
+    contact_penalty() override;
 
     /// Start at rest (or at the checkpoint's state, which restore() then
     /// sets) and print the time step, added mass and contact penalty.
     void
-    start();
+    start() override;
 
     /// Integrate to @p time, the end of a station; returns the contact
-    /// forces at the station (the least-squares line over the interval).
+    /// forces at the station (the least-squares line over the interval)
+    /// and fills the explicit columns of @p s.
     ContactResults
-    advance(const double time);
+    advance(const double       time,
+            const unsigned int step,
+            StepStatistics    &s) override;
 
     /// The account of the last station.
     const ExplicitDynamics::Account &
@@ -103,7 +106,7 @@ namespace densify
 
     /// The physical time at scene time @p scene_time (s).
     double
-    physical_time(const double scene_time) const
+    physical_time(const double scene_time) const override
     {
       return explicit_dynamics->physical_time(scene_time);
     }
@@ -111,7 +114,7 @@ namespace densify
     /// The contact record of the pass at the last station, if that pass
     /// filled it (else null).
     const ContactRecord *
-    station_record() const
+    station_record() const override
     {
       return station_recorded ? &record : nullptr;
     }

@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <densify/drivers/driver.h>
 #include <densify/drivers/load_stepper.h>
 #include <densify/multi_body_system.h>
 #include <densify/parameters.h>
@@ -29,7 +30,7 @@ namespace densify
    * the linear solves (LinearSolver), the loads, the contact multipliers'
    * augmentation, and the commit and roll-back of an increment.
    */
-  class ImplicitDriver : public IncrementalProblem
+  class ImplicitDriver : public Driver, public IncrementalProblem
   {
   public:
     /// The driver of @p system.
@@ -38,10 +39,18 @@ namespace densify
                    ConditionalOStream &pcout,
                    TimerOutput        &timer);
 
+    /// The contact penalty of each particle: MultiBodySystem::
+    /// contact_penalty().
+    std::vector<double>
+    contact_penalty() override
+    {
+      return system.contact_penalty();
+    }
+
     /// The tangent's pattern, Newton's method, the load stepper and the
     /// linear solver, once the system's force terms are built.
     void
-    setup();
+    setup() override;
 
     /// (Re)build the sparsity pattern (cells plus the couplings of the force
     /// terms), the tangent and the stabilisation matrix.
@@ -49,18 +58,13 @@ namespace densify
     setup_matrix();
 
     /// Advance to @p time, the end of load step @p step, from the last
-    /// accepted state; counts the work in @p counts and returns the contact
-    /// forces there. Throws ConvergenceError if the step fails.
+    /// accepted state (LoadStepper::advance_to()); returns the contact
+    /// forces there and fills the iteration counts and the stabilisation's
+    /// force of @p s. Throws ConvergenceError if the step fails.
     ContactResults
-    advance(const double time, const unsigned int step, StepCounts &counts);
-
-    /// The stabilisation's force at the last linear solve of the last
-    /// advance() (N; 0 without stabilisation).
-    double
-    stabilisation_force() const
-    {
-      return last_stabilisation_force;
-    }
+    advance(const double       time,
+            const unsigned int step,
+            StepStatistics    &s) override;
 
     /// l2 norm of the residual after each Newton iteration of the last
     /// Newton solve (N), starting with the initial residual.

@@ -1,0 +1,65 @@
+// What the Simulator asks of a solution method's driver.
+#pragma once
+
+#include <densify/multi_body_system.h>
+#include <densify/postprocess/statistics.h>
+
+#include <vector>
+
+namespace densify
+{
+  /**
+   * The driver of a solution method over a MultiBodySystem, chosen once by
+   * Effects::method: the ImplicitDriver (Newton per increment) or the
+   * ExplicitDriver (explicit dynamics). The Simulator sets it up around the
+   * system's force terms, starts it, and lets it advance the system from
+   * station to station (the load steps' ends); the driver reports its own
+   * columns of each station's statistics.
+   */
+  class Driver
+  {
+  public:
+    virtual ~Driver() = default;
+
+    /// Set up what the method needs before the force terms are built and
+    /// return the contact penalty of each particle they take (MPa/mm).
+    virtual std::vector<double>
+    contact_penalty() = 0;
+
+    /// Set up what the method needs once the force terms are built.
+    virtual void
+    setup()
+    {}
+
+    /// Start the run (at rest, or at a checkpoint's state that is then
+    /// restored).
+    virtual void
+    start()
+    {}
+
+    /**
+     * Advance the system to @p time, the end of load step @p step, from the
+     * last accepted state; return the contact forces there and fill this
+     * method's columns of @p s (iterations and increments, or explicit steps
+     * and the energy account). Throws ConvergenceError if the step fails.
+     */
+    virtual ContactResults
+    advance(const double time, const unsigned int step, StepStatistics &s) = 0;
+
+    /// The time the method integrates at scene time @p scene_time (s): the
+    /// scene time itself unless the method maps it.
+    virtual double
+    physical_time(const double scene_time) const
+    {
+      return scene_time;
+    }
+
+    /// The contact record of the last station's evaluation, where the
+    /// method keeps one (else null: the Simulator evaluates anew).
+    virtual const ContactRecord *
+    station_record() const
+    {
+      return nullptr;
+    }
+  };
+} // namespace densify
