@@ -71,7 +71,7 @@ namespace densify
         prm, system, pcout, timer, this_rank == 0 ? &log_file : nullptr);
     else
       driver = std::make_unique<ImplicitDriver>(prm, system, pcout, timer);
-    system.setup_force_terms(driver->contact_penalty());
+    system.setup_force_terms(driver->prepare());
     driver->setup();
   }
 

@@ -30,7 +30,7 @@ namespace densify
 
 
   std::vector<double>
-  ExplicitDriver::contact_penalty()
+  ExplicitDriver::prepare()
   {
     // the tangential springs' share of the stable step, where friction acts
     const double tangential_ratio =

@@ -24,7 +24,7 @@ namespace densify
     /// Set up what the method needs before the force terms are built and
     /// return the contact penalty of each particle they take (MPa/mm).
     virtual std::vector<double>
-    contact_penalty() = 0;
+    prepare() = 0;
 
     /// Set up what the method needs once the force terms are built.
     virtual void

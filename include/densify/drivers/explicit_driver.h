@@ -64,11 +64,12 @@ namespace densify
                    std::ostream       *log);
 
     /**
-     * The lumped mass, the integrator and the contact penalty that fits its
+     * Set up the lumped mass (with the largest-frequency measurement that
+     * calibrates it), the integrator and the contact penalty that fits its
      * stable step; returns the penalty per particle.
      */
     std::vector<double>
-    contact_penalty() override;
+    prepare() override;
 
     /// Start at rest (or at the checkpoint's state, which restore() then
     /// sets) and print the time step, added mass and contact penalty.

@@ -39,10 +39,10 @@ namespace densify
                    ConditionalOStream &pcout,
                    TimerOutput        &timer);
 
-    /// The contact penalty of each particle: MultiBodySystem::
-    /// contact_penalty().
+    /// Nothing to set up before the force terms; their contact penalty is
+    /// MultiBodySystem::contact_penalty().
     std::vector<double>
-    contact_penalty() override
+    prepare() override
     {
       return system.contact_penalty();
     }
