@@ -15,6 +15,10 @@
 #include <densify/postprocess/run_log.h>
 #include <densify/utilities.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -326,6 +330,59 @@ namespace densify
   MultiBodySystem::update_ghosts()
   {
     ghost_import(solution, solution_ghosted);
+  }
+
+
+
+  void
+  MultiBodySystem::write_checkpoint(
+    boost::archive::binary_oarchive &archive) const
+  {
+    const std::vector<double> values = owned_solution();
+    archive &current_time &current_upper &values &punch_control &lower_control;
+    for (const ForceTerm *term : force_terms())
+      term->write_checkpoint(archive);
+  }
+
+
+
+  void
+  MultiBodySystem::read_checkpoint(boost::archive::binary_iarchive &archive)
+  {
+    std::vector<double>                                          values;
+    archive &current_time &current_upper &values &punch_control &lower_control;
+    for (ForceTerm *term : force_terms())
+      term->read_checkpoint(archive);
+    take_up_solution(values);
+  }
+
+
+
+  std::vector<double>
+  MultiBodySystem::owned_solution() const
+  {
+    std::vector<double> values;
+    values.reserve(locally_owned.n_elements());
+    for (const types::global_dof_index i : locally_owned)
+      values.push_back(solution[i]);
+    return values;
+  }
+
+
+
+  void
+  MultiBodySystem::take_up_solution(const std::vector<double> &values)
+  {
+    AssertDimension(values.size(), locally_owned.n_elements());
+    unsigned int k = 0;
+    for (const types::global_dof_index i : locally_owned)
+      solution[i] = values[k++];
+    solution.compress(VectorOperation::insert);
+    committed_ghosted = solution;
+    update_ghosts();
+    // the search of the loaded configuration
+    if (particle_contact)
+      particle_contact->update_search(solution_ghosted, search_margin);
   }
 
 

@@ -123,6 +123,26 @@ namespace densify
     void
     update_ghosts();
 
+    /// Write this rank's part of the state at a station into a checkpoint:
+    /// the time, the upper punch, the owned entries of the solution, the
+    /// punches' controls and each force term's state.
+    void
+    write_checkpoint(boost::archive::binary_oarchive &archive) const;
+
+    /// Read what write_checkpoint() wrote and take it up (take_up_solution()).
+    void
+    read_checkpoint(boost::archive::binary_iarchive &archive);
+
+    /// The locally owned entries of solution, in the order of locally_owned.
+    std::vector<double>
+    owned_solution() const;
+
+    /// Set solution to @p values (in the order of owned_solution()) as the
+    /// accepted state: the committed solution, the ghosts and the particle
+    /// contact search of that configuration.
+    void
+    take_up_solution(const std::vector<double> &values);
+
     /// Position of the upper punch face at time @p t (mm).
     double
     upper_punch_position(const double t) const;

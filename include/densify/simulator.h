@@ -7,20 +7,14 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
-#include <densify/drivers/explicit_driver.h>
 #include <densify/drivers/implicit_driver.h>
 #include <densify/effects.h>
-#include <densify/material/j2_plasticity.h>
 #include <densify/multi_body_system.h>
 #include <densify/parameters.h>
-#include <densify/postprocess/cell_volume.h>
-#include <densify/postprocess/graphics.h>
-#include <densify/postprocess/particle_measures.h>
-#include <densify/postprocess/quasi_static_guard.h>
-#include <densify/postprocess/statistics.h>
+#include <densify/run/checkpoint.h>
+#include <densify/run/station_report.h>
 #include <densify/scene.h>
 
-#include <array>
 #include <csignal>
 #include <fstream>
 #include <memory>
@@ -47,12 +41,13 @@ namespace densify
   /**
    * Runs one scene: resolves the scene's effects (Effects), builds the
    * MultiBodySystem (the multi-body mesh, DoFs, and a force term for each
-   * effect that is on: ForceTerm) and the driver of its method, the
+   * effect that is on: ForceTerm) and the Driver of its method, the
    * ImplicitDriver (Newton per increment through the LoadStepper) or the
    * ExplicitDriver (explicit dynamics), chosen once. For each load step it
-   * lets the driver advance the system to the step's end, then measures,
-   * reports and checkpoints: statistics.csv, particles.csv, log.txt,
-   * graphics and checkpoints in the output directory.
+   * lets the driver advance the system to the step's end, then the
+   * StationReport measures and writes it (statistics.csv, particles.csv,
+   * graphics), the QuasiStaticStop judges an explicit run, and the
+   * Checkpoint writes the state when due; log.txt has the run's lines.
    */
   class Simulator
   {
@@ -128,7 +123,7 @@ namespace densify
     const std::vector<StepStatistics> &
     statistics() const
     {
-      return step_statistics;
+      return report.statistics();
     }
 
     /// Current volume of each particle (mm^3), on every rank.
@@ -167,10 +162,12 @@ namespace densify
     }
 
     /// contact_partners() and the die wall's particle_tool_forces() at the
-    /// station just reached: from the explicit pass that recorded them there
-    /// (the same state), else by passes of their own.
+    /// station just reached (StationReport::station_contacts()).
     std::pair<std::vector<unsigned int>, std::vector<double>>
-    station_contacts() const;
+    station_contacts() const
+    {
+      return report.station_contacts(*driver);
+    }
 
     /// Rigid translation of each particle: its mean displacement (mm).
     std::vector<Tensor<1, 3>>
@@ -180,99 +177,17 @@ namespace densify
     }
 
   private:
-    /// The DoFs, the driver of the method, and the force terms with the
-    /// contact penalty the driver gives.
+    /// The DoFs, the driver of the method, the force terms with the contact
+    /// penalty the driver gives, and the checkpoints.
     void
     setup_system();
 
-
-    /// Write the .pvtu of this step and rewrite the .pvd, with the
-    /// particles' mean stresses of @p measures.
-    void
-    write_graphics(const unsigned int                  step,
-                   const double                        time,
-                   const std::vector<ParticleMeasure> &measures);
-
-    /**
-     * Write the state at the end of load step @p step (solution, last
-     * increment, quadrature-point history, contact multipliers and friction
-     * history, time and step control, graphics records) to
-     * Output/Directory/checkpoint/, one file per rank, replacing the previous
-     * checkpoint only once the new one is complete.
-     */
-    void
-    write_checkpoint(const unsigned int step, const double wall_seconds);
-
-    /// This rank's part of a checkpoint, held in memory.
-    struct CheckpointSnapshot
-    {
-      /// The load step it ends.
-      unsigned int step = 0;
-      /// Its scene time.
-      double time = 0.;
-      /// The serialized state, as write_checkpoint() stores it.
-      std::string bytes;
-    };
-
-    /// The state at the end of load step @p step, serialized in memory (what
-    /// write_checkpoint() writes).
-    CheckpointSnapshot
-    checkpoint_snapshot(const unsigned int step, const double wall_seconds);
-
-    /// Write @p snapshot (every rank its own) to Output/Directory/checkpoint/,
-    /// replacing the previous checkpoint only once the new one is complete.
-    void
-    store_checkpoint(const CheckpointSnapshot &snapshot);
-
-    /// The limits of the quasi-static guard: those of subsection Explicit
-    /// for an explicit run whose mass scaling sets the step, else none.
-    QuasiStaticLimits
-    quasi_static_limits() const;
-
-    /**
-     * Stop the run if station @p s breaks the limits of @p guard: store the
-     * snapshot of the last station within them as the checkpoint (if there
-     * is one) and throw an error that names the breach and Explicit/Number
-     * of steps.
-     */
-    void
-    check_quasi_static(const StepStatistics &s, QuasiStaticGuard &guard);
-
-    /// Warn once per run when station @p s penetrates by more than
-    /// Contact/Gap tolerance (explicit runs; the implicit load stepper warns
-    /// at each step it cannot meet it).
-    void
-    warn_penetration(const StepStatistics &s);
-
-    /// A recent station of an explicit run within the quasi-static limits,
-    /// kept for the checkpoint of a run that leaves them.
-    CheckpointSnapshot guard_snapshot;
-    /// Wall time of the run when guard_snapshot was taken, and what taking
-    /// it cost (s).
-    double guard_snapshot_wall = 0., guard_snapshot_cost = 0.;
-    /// Whether warn_penetration() has warned.
-    bool penetration_warned = false;
-
-    /// Warn once per run when the smallest cell volume ratio at step
-    /// @p step falls below 0.2 (the run goes on).
-    void
-    warn_cell_volume(const unsigned int        step,
-                     const SmallestCellVolume &smallest);
-    /// Whether warn_cell_volume() has warned.
-    bool cell_volume_warned = false;
-
-    /**
-     * Load the checkpoint written by write_checkpoint() into the set-up
-     * system; returns its load step. Throws InputError if there is none or it
-     * belongs to another scene, mesh or number of ranks.
-     */
-    unsigned int
-    read_checkpoint();
-
-    /// Keep the rows of the CSV file @p filename up to load step @p step
-    /// (first column), so that a resumed run appends after them.
-    void
-    truncate_rows(const std::string &filename, const unsigned int step) const;
+    /// Write the checkpoint of load step @p step after a failed step
+    /// (@p e) and throw @p e with where it is.
+    [[noreturn]] void
+    keep_failed_run(const ConvergenceError &e,
+                    const unsigned int      step,
+                    const double            wall_seconds) const;
 
     const Parameters &prm;
     /// How the run may stop early and continue.
@@ -297,27 +212,16 @@ namespace densify
     std::unique_ptr<Driver> driver;
 
     /// The driver as the implicit one (null with another method), for
-    /// what only it has (its checkpoint state, Newton's residuals).
+    /// what only it has (Newton's residuals).
     ImplicitDriver *
     implicit_driver() const
     {
       return dynamic_cast<ImplicitDriver *>(driver.get());
     }
 
-    /// The driver as the explicit one (null with another method).
-    ExplicitDriver *
-    explicit_driver() const
-    {
-      return dynamic_cast<ExplicitDriver *>(driver.get());
-    }
-    std::vector<StepStatistics>       step_statistics;
-    std::unique_ptr<StatisticsWriter> statistics_writer;
-    /// particles.csv: per particle and step, volume and mean displacement
-    /// (rank 0).
-    std::unique_ptr<ParticleTableWriter> particle_writer;
-    /// Volume of each particle's mesh at the start (mm^3).
-    std::vector<double> initial_volumes;
-    /// The graphics and the records of the .pvd.
-    GraphicsWriter graphics;
+    /// The report at each station: statistics, particles' rows, graphics.
+    StationReport report;
+    /// The checkpoints of the system and the driver, made with the driver.
+    std::unique_ptr<Checkpoint> checkpoint;
   };
 } // namespace densify

@@ -6,6 +6,10 @@
 #include <densify/drivers/explicit_driver.h>
 #include <densify/utilities.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -174,6 +178,35 @@ namespace densify
     std::copy(saved.mode.begin(), saved.mode.end(), frequency_mode.begin());
     search_solution = system.solution;
     body_solution   = system.solution;
+  }
+
+
+
+  void
+  ExplicitDriver::write_checkpoint(
+    boost::archive::binary_oarchive &archive) const
+  {
+    const Saved state = saved();
+    archive    &state;
+  }
+
+
+
+  void
+  ExplicitDriver::read_checkpoint(boost::archive::binary_iarchive &archive)
+  {
+    loaded = std::make_unique<Saved>();
+    archive &*loaded;
+  }
+
+
+
+  void
+  ExplicitDriver::resume()
+  {
+    Assert(loaded, ExcInternalError());
+    restore(*loaded, system.current_time);
+    loaded.reset();
   }
 
 

@@ -12,6 +12,10 @@
 
 #include <densify/drivers/implicit_driver.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -163,6 +167,37 @@ namespace densify
     stepper->last_increment.compress(VectorOperation::insert);
     stepper->next_increment = saved.next_increment;
     stepper->last_travel    = saved.last_travel;
+  }
+
+
+
+  void
+  ImplicitDriver::write_checkpoint(
+    boost::archive::binary_oarchive &archive) const
+  {
+    const Saved state = saved();
+    archive    &state;
+  }
+
+
+
+  void
+  ImplicitDriver::read_checkpoint(boost::archive::binary_iarchive &archive)
+  {
+    loaded = std::make_unique<Saved>();
+    archive &*loaded;
+  }
+
+
+
+  void
+  ImplicitDriver::resume()
+  {
+    Assert(loaded, ExcInternalError());
+    restore(*loaded);
+    loaded.reset();
+    if (system.particle_contact)
+      setup_matrix();
   }
 
 

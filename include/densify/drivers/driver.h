@@ -6,6 +6,15 @@
 
 #include <vector>
 
+namespace boost
+{
+  namespace archive
+  {
+    class binary_oarchive;
+    class binary_iarchive;
+  } // namespace archive
+} // namespace boost
+
 namespace densify
 {
   /**
@@ -61,5 +70,21 @@ namespace densify
     {
       return nullptr;
     }
+
+    /// Write the method's own state at a station (this rank's part) into a
+    /// checkpoint.
+    virtual void
+    write_checkpoint(boost::archive::binary_oarchive &archive) const = 0;
+
+    /// Read what write_checkpoint() wrote; resume() takes it up once the
+    /// system holds the checkpoint's state.
+    virtual void
+    read_checkpoint(boost::archive::binary_iarchive &archive) = 0;
+
+    /// Continue from the state read by read_checkpoint(), the system being
+    /// at the checkpoint's state. Throws InputError if the state does not
+    /// fit this run.
+    virtual void
+    resume() = 0;
   };
 } // namespace densify

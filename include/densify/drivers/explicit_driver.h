@@ -137,6 +137,14 @@ namespace densify
       unsigned int n_explicit = 0;
       /// The calibration's target.
       double target = 0.;
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int /*version*/)
+      {
+        archive &dynamics &work &factors &calibration &bound &updates &mode
+          &n_explicit &target;
+      }
     };
 
     /// The driver's state for a checkpoint.
@@ -147,6 +155,18 @@ namespace densify
     /// if it does not fit this run (a checkpoint of an implicit run).
     void
     restore(const Saved &saved, const double time);
+
+    /// Write saved().
+    void
+    write_checkpoint(boost::archive::binary_oarchive &archive) const override;
+
+    /// Read what write_checkpoint() wrote.
+    void
+    read_checkpoint(boost::archive::binary_iarchive &archive) override;
+
+    /// restore() what read_checkpoint() read at the system's time.
+    void
+    resume() override;
 
     // ExplicitSystem
     double
@@ -166,6 +186,9 @@ namespace densify
     }
 
   private:
+    /// The state read by read_checkpoint(), until resume() takes it up.
+    std::unique_ptr<Saved> loaded;
+
     /// The largest squared frequency of the elements (elastic, at the
     /// current state) with the lumped mass @p mass, by power iteration.
     double

@@ -82,6 +82,13 @@ namespace densify
       std::vector<double> increment;
       double              next_increment = 0.;
       double              last_travel    = 0.;
+
+      template <class Archive>
+      void
+      serialize(Archive &archive, const unsigned int /*version*/)
+      {
+        archive &increment &next_increment &last_travel;
+      }
     };
 
     /// The driver's state for a checkpoint.
@@ -91,6 +98,19 @@ namespace densify
     /// Continue from @p saved.
     void
     restore(const Saved &saved);
+
+    /// Write saved().
+    void
+    write_checkpoint(boost::archive::binary_oarchive &archive) const override;
+
+    /// Read what write_checkpoint() wrote.
+    void
+    read_checkpoint(boost::archive::binary_iarchive &archive) override;
+
+    /// restore() what read_checkpoint() read, and set up the matrix pattern
+    /// of the system's contact search at the checkpoint's state.
+    void
+    resume() override;
 
     // IncrementalProblem
     Evaluation
@@ -144,6 +164,9 @@ namespace densify
     commit() override;
 
   private:
+    /// The state read by read_checkpoint(), until resume() takes it up.
+    std::unique_ptr<Saved> loaded;
+
     /// The contact results of the last evaluate_constraints().
     ContactResults last_contact;
     /// Output/Verbose: which history points yielded at the last iterate.

@@ -1,21 +1,17 @@
-// Checkpoints of the Simulator: write the state at the end of a load step,
-// read it back to resume (densify --resume).
-//
-// The mesh is not stored: it is rebuilt from the same parameters (gmsh and
-// the METIS partition are deterministic for the same scene and number of
-// ranks), and the checkpoint records what identifies it (cells, DoFs, a sum
-// of the vertex coordinates, the ranks) to refuse a checkpoint of another
-// mesh. Each rank writes what it owns (vectors, and each force term's state:
-// the quadrature-point history of its cells, the contact state of its
-// contact points) into its own file with a boost binary archive, as deal.II
-// serializes its own classes.
+// Checkpoints of a run: the file layout, the checks that a checkpoint fits
+// the scene, and the replacement of the previous checkpoint only once the
+// new one is complete. Each rank writes what it owns (vectors, and each
+// force term's state: the quadrature-point history of its cells, the contact
+// state of its contact points) into its own file with a boost binary
+// archive, as deal.II serializes its own classes.
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/base/quadrature_lib.h>
 
+#include <densify/drivers/explicit_driver.h>
+#include <densify/drivers/implicit_driver.h>
 #include <densify/parameters.h>
-#include <densify/simulator.h>
+#include <densify/run/checkpoint.h>
 #include <densify/utilities.h>
 
 #include <boost/archive/binary_iarchive.hpp>
@@ -36,8 +32,10 @@ namespace densify
 {
   namespace
   {
-    /// Increment when the layout of a checkpoint file changes.
-    constexpr unsigned int checkpoint_version = 9;
+    /// Increment when the layout of a checkpoint file changes. Format 10
+    /// has each part's state in a piece of its own (the system's, then the
+    /// driver's); 6 to 9 interleaved them (read_earlier_format()).
+    constexpr unsigned int checkpoint_version = 10;
 
     /// What identifies the mesh and the run a checkpoint belongs to.
     struct CheckpointHeader
@@ -57,30 +55,6 @@ namespace densify
         archive &version &n_ranks &rank &n_cells &n_dofs &vertices &fingerprint;
       }
     };
-
-    /// The locally owned entries of @p v, in the order of @p owned.
-    std::vector<double>
-    owned_values(const TrilinosWrappers::MPI::Vector &v, const IndexSet &owned)
-    {
-      std::vector<double> values;
-      values.reserve(owned.n_elements());
-      for (const types::global_dof_index i : owned)
-        values.push_back(v[i]);
-      return values;
-    }
-
-    /// Inverse of owned_values().
-    void
-    set_owned_values(const std::vector<double>     &values,
-                     const IndexSet                &owned,
-                     TrilinosWrappers::MPI::Vector &v)
-    {
-      AssertDimension(values.size(), owned.n_elements());
-      unsigned int k = 0;
-      for (const types::global_dof_index i : owned)
-        v[i] = values[k++];
-      v.compress(VectorOperation::insert);
-    }
 
     /// The first line of @p a that @p b lacks ("no such entry" if none),
     /// for an error message.
@@ -233,24 +207,29 @@ namespace densify
 
 
 
-  void
-  Simulator::write_checkpoint(const unsigned int step,
-                              const double       wall_seconds)
-  {
-    store_checkpoint(checkpoint_snapshot(step, wall_seconds));
-  }
+  Checkpoint::Checkpoint(const Parameters   &parameters,
+                         MultiBodySystem    &system,
+                         Driver             &driver,
+                         GraphicsWriter     &graphics,
+                         ConditionalOStream &pcout,
+                         TimerOutput        &timer)
+    : prm(parameters)
+    , system(system)
+    , driver(driver)
+    , graphics(graphics)
+    , pcout(pcout)
+    , timer(timer)
+    , comm(system.comm)
+    , this_rank(Utilities::MPI::this_mpi_process(system.comm))
+  {}
 
 
 
-  Simulator::CheckpointSnapshot
-  Simulator::checkpoint_snapshot(const unsigned int step,
-                                 const double       wall_seconds)
+  Checkpoint::Snapshot
+  Checkpoint::snapshot(const unsigned int step, const double wall_seconds) const
   {
     TimerOutput::Scope t(timer, "Checkpoint");
-    // the .pvd's records of the graphics written so far
-    const GraphicsWriter::Records &pvd_records = graphics.records();
-
-    CheckpointHeader header;
+    CheckpointHeader   header;
     header.n_ranks     = Utilities::MPI::n_mpi_processes(comm);
     header.rank        = this_rank;
     header.n_cells     = system.triangulation.n_active_cells();
@@ -259,39 +238,19 @@ namespace densify
     for (const Point<3> &v : system.triangulation.get_vertices())
       header.vertices += v[0] + v[1] + v[2];
 
-    CheckpointSnapshot snapshot;
+    Snapshot snapshot;
     snapshot.step = step;
     snapshot.time = system.current_time;
     std::ostringstream out(std::ios::binary);
     {
       boost::archive::binary_oarchive archive(out);
-      std::vector<double>             solution_values =
-        owned_values(system.solution, system.locally_owned);
-      // the load stepper's predictor and increment (implicit method)
-      ImplicitDriver::Saved implicit;
-      if (const ImplicitDriver *d = implicit_driver())
-        implicit = d->saved();
-      else
-        implicit.increment.assign(system.locally_owned.n_elements(), 0.);
-      unsigned int                             last_step = step;
-      double                                   wall      = wall_seconds;
-      double                                   time      = system.current_time;
-      double                                   upper     = system.current_upper;
-      archive &header &last_step &time &upper &implicit.next_increment &implicit
-        .last_travel &wall &solution_values &implicit.increment &pvd_records;
-      // explicit dynamics: the integrator, the loads' account and the
-      // mass-scaling factors
-      ExplicitDriver::Saved saved;
-      if (const ExplicitDriver *d = explicit_driver())
-        saved = d->saved();
-      else
-        saved.n_explicit = prm.explicit_dynamics.n_steps;
-      archive &saved.dynamics &saved.work &saved.factors &saved
-        .calibration &saved.bound &saved.updates &saved.mode &saved
-        .n_explicit &system.punch_control &system.lower_control &saved.target;
-      // each force term's state (history, multipliers, friction)
-      for (const ForceTerm *term : system.force_terms())
-        term->write_checkpoint(archive);
+      unsigned int                    last_step = step;
+      double                          wall      = wall_seconds;
+      // the .pvd's records of the graphics written so far
+      const GraphicsWriter::Records    &records = graphics.records();
+      archive &header &last_step &wall &records;
+      system.write_checkpoint(archive);
+      driver.write_checkpoint(archive);
     }
     snapshot.bytes = out.str();
     return snapshot;
@@ -300,7 +259,7 @@ namespace densify
 
 
   void
-  Simulator::store_checkpoint(const CheckpointSnapshot &snapshot)
+  Checkpoint::store(const Snapshot &snapshot) const
   {
     TimerOutput::Scope t(timer, "Checkpoint");
     namespace fs         = std::filesystem;
@@ -382,13 +341,13 @@ namespace densify
 
 
 
-  unsigned int
-  Simulator::read_checkpoint()
+  Checkpoint::Resumed
+  Checkpoint::read()
   {
     namespace fs       = std::filesystem;
     const fs::path dir = prm.output.directory;
-    // a run stopped between the two renames of write_checkpoint() left its
-    // last complete checkpoint in checkpoint.old
+    // a run stopped between the two renames of store() left its last
+    // complete checkpoint in checkpoint.old
     fs::path from = dir / "checkpoint";
     if (!fs::exists(from / "info.txt") && fs::exists(dir / "checkpoint.old"))
       from = dir / "checkpoint.old";
@@ -418,29 +377,20 @@ namespace densify
       }
 
     // the .pvd's records of the graphics up to the checkpoint
-    GraphicsWriter::Records pvd_records;
-
-    CheckpointHeader      header;
-    unsigned int          step = 0;
-    double                wall = 0.;
-    std::vector<double>   solution_values;
-    ImplicitDriver::Saved implicit;
-    ExplicitDriver::Saved saved;
+    GraphicsWriter::Records records;
+    CheckpointHeader        header;
+    Resumed                 resumed;
     try
       {
         boost::archive::binary_iarchive archive(in);
         archive                        &header;
-        // format 6 lacks the punch controls' state, format 7 the lower
-        // punch's, which a run of that densify (displacement control only)
-        // left at their start; format 8 the calibration's target (its
-        // explicit runs raised the calibration at once)
-        if (header.version != checkpoint_version && header.version != 6 &&
-            header.version != 7 && header.version != 8)
+        if (header.version != checkpoint_version &&
+            (header.version < 6 || header.version > 9))
           throw InputError(
             "--resume: checkpoint '" + file.string() + "' has format version " +
             std::to_string(header.version) +
             ", this densify "
-            "reads " +
+            "reads 6 to " +
             std::to_string(checkpoint_version) + "; run without --resume");
         if (header.n_ranks != n_ranks)
           throw InputError(
@@ -453,7 +403,7 @@ namespace densify
             checked_entries(header.fingerprint, prm.fingerprint);
         // the load schedule may go on beyond the stopped run's end (a
         // compact pressed further): compared apart, once the checkpoint's
-        // time is known
+        // time is known (check_schedule())
         std::map<std::string, std::string> stored_schedule, schedule;
         const std::string                  stored_rest =
           split_schedule(header.fingerprint, stored_schedule);
@@ -478,48 +428,15 @@ namespace densify
                            std::to_string(header.n_dofs) +
                            " DoFs) is not the one this scene makes; run "
                            "without --resume");
-        double                     &time  = system.current_time;
-        double                     &upper = system.current_upper;
-        archive &step &time &upper &implicit.next_increment &implicit
-          .last_travel &wall &solution_values               &implicit
-          .increment &pvd_records &saved.dynamics &saved.work &saved
-          .factors &saved.calibration &saved.bound &saved.updates &saved
-          .mode &saved.n_explicit;
-        if (step >= prm.time.n_steps)
-          throw InputError(
-            "--resume: the checkpoint is of the run's last step " +
-            std::to_string(step) +
-            "; to press further, resume with a longer Time stepping/End "
-            "time, Number of steps (the same load step) and load history");
-        if (!prm.fingerprint.empty() && !header.fingerprint.empty() &&
-            stored_schedule != schedule)
+        if (header.version == checkpoint_version)
           {
-            const std::string broken =
-              schedule_break(stored_schedule, schedule, system.current_time);
-            if (!broken.empty())
-              throw InputError(
-                "--resume: this run has " + broken +
-                "; a resumed run may only go on beyond the stopped run's "
-                "schedule (the same load step, the load histories unchanged "
-                "up to the checkpoint)");
-            if (system.effects.method != Method::implicit)
-              throw InputError(
-                "--resume: Time stepping/End time, Number of steps and the "
-                "load histories may change on resume only with Solver/Method "
-                "= implicit (an explicit run maps the schedule onto "
-                "Explicit/Loading time); resume with the stopped run's "
-                "schedule");
+            archive &resumed.step &resumed.wall_seconds &records;
+            system.read_checkpoint(archive);
+            driver.read_checkpoint(archive);
           }
-        if (header.version >= 7)
-          archive &system.punch_control;
-        if (header.version >= 8)
-          archive &system.lower_control;
-        // format 8 and before: no rise of the calibration under way
-        saved.target = saved.calibration;
-        if (header.version >= 9)
-          archive &saved.target;
-        for (ForceTerm *term : system.force_terms())
-          term->read_checkpoint(archive);
+        else
+          resumed = read_earlier_format(archive, header.version, records);
+        check_schedule(header.fingerprint, resumed.step);
       }
     catch (const InputError &)
       {
@@ -531,34 +448,19 @@ namespace densify
                          file.string() + "' (" + e.what() +
                          "); run without --resume");
       }
+    driver.resume();
 
-    set_owned_values(solution_values, system.locally_owned, system.solution);
-    if (ImplicitDriver *d = implicit_driver())
-      d->restore(implicit);
-    wall_before              = wall;
-    system.committed_ghosted = system.solution;
-    system.update_ghosts();
-    if (system.particle_contact)
-      {
-        // the search of the loaded configuration, and its matrix pattern
-        system.particle_contact->update_search(system.solution_ghosted,
-                                               system.search_margin);
-        if (ImplicitDriver *d = implicit_driver())
-          d->setup_matrix();
-      }
-    if (ExplicitDriver *d = explicit_driver())
-      d->restore(saved, system.current_time);
     // the .pvd lists the graphics up to the checkpoint only, also when the
     // resumed run writes none
-    graphics.set_records(pvd_records);
+    graphics.set_records(records);
     std::string error;
     if (this_rank == 0 &&
-        (!pvd_records.empty() || fs::exists(dir / "solution.pvd")))
+        (!records.empty() || fs::exists(dir / "solution.pvd")))
       {
         const fs::path tmp = dir / "solution.pvd.tmp";
         errno              = 0;
         std::ofstream pvd(tmp);
-        DataOutBase::write_pvd_record(pvd, pvd_records);
+        DataOutBase::write_pvd_record(pvd, records);
         pvd.close();
         if (pvd.fail())
           error = "--resume: " + write_error(tmp.string());
@@ -568,17 +470,101 @@ namespace densify
     error = first_error(error, comm);
     if (!error.empty())
       throw std::runtime_error(error);
-    pcout << "Resumed from the checkpoint after step " << step << " (time "
-          << system.current_time << ") in " << from.string() << "/"
+    pcout << "Resumed from the checkpoint after step " << resumed.step
+          << " (time " << system.current_time << ") in " << from.string() << "/"
           << std::endl;
-    return step;
+    return resumed;
   }
 
 
 
   void
-  Simulator::truncate_rows(const std::string &filename,
-                           const unsigned int step) const
+  Checkpoint::check_schedule(const std::string &stored_fingerprint,
+                             const unsigned int step) const
+  {
+    if (step >= prm.time.n_steps)
+      throw InputError(
+        "--resume: the checkpoint is of the run's last step " +
+        std::to_string(step) +
+        "; to press further, resume with a longer Time stepping/End "
+        "time, Number of steps (the same load step) and load history");
+    if (stored_fingerprint.empty() || prm.fingerprint.empty())
+      return;
+    std::map<std::string, std::string> stored_schedule, schedule;
+    split_schedule(stored_fingerprint, stored_schedule);
+    split_schedule(prm.fingerprint, schedule);
+    if (stored_schedule == schedule)
+      return;
+    const std::string broken =
+      schedule_break(stored_schedule, schedule, system.current_time);
+    if (!broken.empty())
+      throw InputError(
+        "--resume: this run has " + broken +
+        "; a resumed run may only go on beyond the stopped run's "
+        "schedule (the same load step, the load histories unchanged "
+        "up to the checkpoint)");
+    if (system.effects.method != Method::implicit)
+      throw InputError(
+        "--resume: Time stepping/End time, Number of steps and the "
+        "load histories may change on resume only with Solver/Method "
+        "= implicit (an explicit run maps the schedule onto "
+        "Explicit/Loading time); resume with the stopped run's "
+        "schedule");
+  }
+
+
+
+  Checkpoint::Resumed
+  Checkpoint::read_earlier_format(boost::archive::binary_iarchive &archive,
+                                  const unsigned int               version,
+                                  GraphicsWriter::Records         &records)
+  {
+    // formats 6 to 9 interleave the system's, the load stepper's and the
+    // explicit driver's state; each method's fields were written by both
+    Resumed               resumed;
+    std::vector<double>   solution_values;
+    ImplicitDriver::Saved implicit;
+    ExplicitDriver::Saved saved;
+    archive &resumed.step &system.current_time &system.current_upper &implicit
+      .next_increment &implicit.last_travel &resumed
+      .wall_seconds &solution_values &implicit.increment &records &saved
+      .dynamics &saved.work &saved.factors &saved.calibration &saved
+      .bound &saved.updates &saved.mode &saved.n_explicit;
+    // format 6 lacks the punch controls' state, format 7 the lower punch's,
+    // which a run of that densify (displacement control only) left at their
+    // start; format 8 the calibration's target (its explicit runs raised
+    // the calibration at once)
+    if (version >= 7)
+      archive &system.punch_control;
+    if (version >= 8)
+      archive &system.lower_control;
+    saved.target = saved.calibration;
+    if (version >= 9)
+      archive &saved.target;
+    for (ForceTerm *term : system.force_terms())
+      term->read_checkpoint(archive);
+    system.take_up_solution(solution_values);
+
+    // the driver's part as format 10 has it
+    std::ostringstream out(std::ios::binary);
+    {
+      boost::archive::binary_oarchive driver_archive(out);
+      if (dynamic_cast<ImplicitDriver *>(&driver) != nullptr)
+        driver_archive &implicit;
+      else
+        driver_archive &saved;
+    }
+    std::istringstream              in(out.str(), std::ios::binary);
+    boost::archive::binary_iarchive driver_archive(in);
+    driver.read_checkpoint(driver_archive);
+    return resumed;
+  }
+
+
+
+  void
+  Checkpoint::truncate_rows(const std::string &filename,
+                            const unsigned int step)
   {
     std::ifstream            in(filename);
     std::vector<std::string> kept;

@@ -1,25 +1,31 @@
-// The Simulator's watch over explicit runs: the quasi-static guard's limits
-// and its stop, and the warning about penetration.
+// The stop of an explicit run that is no longer quasi-static: the guard's
+// limits, the snapshot of the last station within them, and the error.
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
 
-#include <deal.II/fe/fe_values.h>
-
-#include <densify/postprocess/quasi_static_guard.h>
-#include <densify/simulator.h>
+#include <densify/run/quasi_static_stop.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
-#include <map>
 #include <sstream>
-#include <type_traits>
 
 namespace densify
 {
+  QuasiStaticStop::QuasiStaticStop(const Parameters      &parameters,
+                                   const MultiBodySystem &system,
+                                   const Checkpoint      &checkpoint)
+    : prm(parameters)
+    , system(system)
+    , checkpoint(checkpoint)
+    , guard(limits(parameters, system))
+  {}
+
+
+
   QuasiStaticLimits
-  Simulator::quasi_static_limits() const
+  QuasiStaticStop::limits(const Parameters &prm, const MultiBodySystem &system)
   {
     QuasiStaticLimits limits;
     // high-speed compaction (no mass scaling) has inertia by intent
@@ -48,9 +54,22 @@ namespace densify
 
 
   void
-  Simulator::check_quasi_static(const StepStatistics &s,
-                                QuasiStaticGuard     &guard)
+  QuasiStaticStop::write_checkpoint(const unsigned int step,
+                                    const double       wall_seconds) const
   {
+    if (snapshot.step == step && !snapshot.bytes.empty())
+      checkpoint.store(snapshot);
+    else
+      checkpoint.write(step, wall_seconds);
+  }
+
+
+
+  void
+  QuasiStaticStop::check(const StepStatistics &s, const unsigned int n_steps)
+  {
+    if (!guard.active())
+      return;
     std::string breach = guard.add(s);
     std::string advice = "raise Explicit/Number of steps (now " +
                          std::to_string(prm.explicit_dynamics.n_steps) + ")";
@@ -87,52 +106,40 @@ namespace densify
                     "lags or rings), or use Solver/Method = implicit";
         }
     if (breach.empty())
-      return;
+      {
+        // the snapshot for the checkpoint of a stop at most every 50 times
+        // its own cost in run time (every station of the light layer, every
+        // few of the paper scene), so that it costs at most 2 %. Each rank
+        // reads its own clock, so the ranks agree on it: taking a snapshot
+        // is collective (its timer section synchronises the ranks), and a
+        // rank that took one alone would wait there forever
+        if (guard.judging() && s.step < n_steps &&
+            Utilities::MPI::max(
+              s.wall_seconds - snapshot_wall >= 50. * snapshot_cost ? 1 : 0,
+              system.comm) > 0)
+          {
+            Timer taking;
+            snapshot      = checkpoint.snapshot(s.step, s.wall_seconds);
+            snapshot_cost = taking.wall_time();
+            snapshot_wall = s.wall_seconds;
+          }
+        return;
+      }
     std::ostringstream text;
     text << "the explicit run is no longer quasi-static at step " << s.step
          << " (punch " << s.punch_displacement << " mm): " << breach << "; "
          << advice;
-    if (guard_snapshot.bytes.empty())
+    if (snapshot.bytes.empty())
       text << "; no earlier station of this run was judged within the "
               "limits, so "
               "no checkpoint is written";
     else
       {
-        store_checkpoint(guard_snapshot);
+        checkpoint.store(snapshot);
         text << "; the last station within them that was kept (step "
-             << guard_snapshot.step << ") is in " << prm.output.directory
+             << snapshot.step << ") is in " << prm.output.directory
              << "/checkpoint/: continue from it with --resume and more steps";
       }
     throw std::runtime_error(text.str());
-  }
-
-
-
-  void
-  Simulator::warn_penetration(const StepStatistics &s)
-  {
-    // once per run: an explicit run's penalty leaves the same penetration
-    // station after station
-    if (penetration_warned || !(s.max_penetration > prm.contact.gap_tolerance))
-      return;
-    penetration_warned = true;
-    pcout << "  warning: penetration " << std::setprecision(3)
-          << s.max_penetration
-          << " mm above Contact/Gap tolerance = " << prm.contact.gap_tolerance
-          << " mm at step " << s.step
-          << " (printed once; statistics.csv has max_penetration of every "
-             "step): ";
-    // the multipliers remove a lasting penetration over about their number
-    // of steps, not a passing one
-    if (prm.explicit_dynamics.multiplier_steps == 0)
-      pcout << "raise Explicit/Contact multiplier steps from 0 (e.g. 200) or "
-               "Explicit/Contact stiffness";
-    else
-      pcout << "raise Explicit/Contact stiffness (Explicit/Contact multiplier "
-               "steps = "
-            << prm.explicit_dynamics.multiplier_steps
-            << " removes a lasting penetration over about as many explicit "
-               "steps)";
-    pcout << std::endl;
   }
 } // namespace densify
