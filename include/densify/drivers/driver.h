@@ -1,19 +1,11 @@
 // What the Simulator asks of a solution method's driver.
 #pragma once
 
+#include <densify/assembly/force_term.h>
 #include <densify/multi_body_system.h>
 #include <densify/postprocess/statistics.h>
 
 #include <vector>
-
-namespace boost
-{
-  namespace archive
-  {
-    class binary_oarchive;
-    class binary_iarchive;
-  } // namespace archive
-} // namespace boost
 
 namespace densify
 {
