@@ -158,7 +158,8 @@ for run in "${runs[@]}"; do
   base=$(scene_options "$scene")
   if [ "$base" = "@stop-after" ]; then
     [ "$grid" = full ] || stop=(--stop-after 50)
-    base=""
+    # the paper's layer runs explicit by default; the study is implicit
+    base="Solver/Method=implicit"
   fi
   sets=${base:+$base;}$sets
   IFS=';' read -r -a entries <<< "$sets"

@@ -21,7 +21,7 @@ out=$(mktemp -d)
 for v in old new; do
   b=$old; [ $v = new ] && b=$new
   echo "=== $v ($b): paper scene, steps 1-3"
-  DENSIFY=$b bash benchmarks/scene_speed.sh prm/single_layer_sn.prm --stop-after 3
+  DENSIFY=$b bash benchmarks/scene_speed.sh prm/single_layer_sn.prm --set Solver/Method=implicit --stop-after 3
 done
 if [ -n "$run" ]; then
   for v in old new; do
@@ -29,7 +29,7 @@ if [ -n "$run" ]; then
     d=$out/late_$v; mkdir -p "$d"; cp -r "$run/checkpoint" "$run/statistics.csv" "$run/particles.csv" "$d/"
     last=$(awk '/load step/{print $3}' "$d/checkpoint/info.txt")
     echo "=== $v: paper scene, steps $((last + 1))-$((last + 3)), 2 ranks"
-    /usr/bin/time -f "%e s wall, %M kB peak (largest process)" mpirun -np 2 "$b" prm/single_layer_sn.prm \
+    /usr/bin/time -f "%e s wall, %M kB peak (largest process)" mpirun -np 2 "$b" prm/single_layer_sn.prm --set Solver/Method=implicit \
       --set "Output/Directory=$d" --set Output/Interval=0 --resume --stop-after $((last + 3)) \
       > "$d.log" 2> "$d.time" || [ $? -eq 3 ]
     grep -E '^step' "$d.log" | tail -n 3; tail -n 1 "$d.time"

@@ -36,7 +36,7 @@ variant() {
   cp -r "$run/checkpoint" "$run/statistics.csv" "$dir/"
   local rc=0
   /usr/bin/time -f "%e %M" -o "$dir.time" "${launch[@]}" "$root/build/densify" \
-    "$root/prm/single_layer_sn.prm" --set "Output/Directory=$dir" \
+    "$root/prm/single_layer_sn.prm" --set Solver/Method=implicit --set "Output/Directory=$dir" \
     --set "Output/Checkpoint interval=0" --set "Output/Interval=0" \
     --resume --stop-after "$last" "$@" > "$dir.log" 2>&1 || rc=$?
   if [ $rc -ne 0 ] && [ $rc -ne 3 ]; then

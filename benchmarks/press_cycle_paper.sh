@@ -16,7 +16,7 @@ out=${1:?usage: bash benchmarks/press_cycle_paper.sh OUT [--set ...]...}
 shift
 export OMPI_ALLOW_RUN_AS_ROOT=${OMPI_ALLOW_RUN_AS_ROOT:-1}
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=${OMPI_ALLOW_RUN_AS_ROOT_CONFIRM:-1}
-mpirun -np 2 "$root/build/densify" "$root/prm/single_layer_sn.prm" \
+mpirun -np 2 "$root/build/densify" "$root/prm/single_layer_sn.prm" --set Solver/Method=implicit \
   --set "Scene/Fidelity=draft" --set "Time stepping/Number of steps=52" \
   --set "Time stepping/End time=1.3" \
   --set "Tools/Upper punch/Displacement history=0:0, 0.8:1.28, 0.85:1.28, 0.9:1.25" \

@@ -32,7 +32,7 @@ case $method in
                      --set "Explicit/Number of steps=25250"
                      --set "Explicit/Contact stiffness=auto"
                      --set "Explicit/Ramp fraction=0.2") ;;
-  implicit) options=(--set "Output/Checkpoint interval=5") ;;
+  implicit) options=(--set Solver/Method=implicit --set "Output/Checkpoint interval=5") ;;
   *) echo "METHOD must be explicit or implicit" >&2; exit 2 ;;
 esac
 mkdir -p "$out"

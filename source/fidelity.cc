@@ -39,7 +39,9 @@ namespace densify
               {"Contact/Penalty factor", "100"},
               {"Solver/Linear solver", "gmres-lu"},
               {"Solver/Line search", "energy"},
-              {"Solver/Maximum Newton iterations", "60"}};
+              {"Solver/Maximum Newton iterations", "60"},
+              {"Solver/Adaptive linear tolerance", "true"},
+              {"Solver/Reproducible", "false"}};
     throw std::runtime_error("Scene/Fidelity = '" + level +
                              "': expected as set, draft, standard or "
                              "reference");

@@ -18,8 +18,10 @@ for line in table.splitlines():
     if header is None and cells[:4] == ["entry", "draft", "standard", "reference"]:
         header = cells
     elif header and len(cells) >= 4 and re.fullmatch(r"`[^`]+`", cells[0]):
+        # "—": the level leaves the entry as set (the program's default)
         for level, value in zip(header[1:4], cells[1:4]):
-            print(f"{level}\t{cells[0].strip('`')} = {value.strip('`')}")
+            if value != "—":
+                print(f"{level}\t{cells[0].strip('`')} = {value.strip('`')}")
 assert header, "no table 'entry | draft | standard | reference' in doc/accuracy.md"
 PY
 [ "$(wc -l < levels.txt)" -ge 12 ]

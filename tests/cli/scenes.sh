@@ -11,9 +11,11 @@ for scene in "$SOURCE_DIR"/prm/*.prm; do
   extra=()
   case "$name" in
     seven_spheres_sn) extra=(--set "Tools/Upper punch/Displacement history=0:0, 1:0.04") ;;
-    # the paper's 43-sphere layer shrunk to its middle seven (die 7.52 mm)
+    # the paper's 43-sphere layer shrunk to its middle seven (die 7.52 mm),
+    # and 500 explicit steps for the short stroke
     single_layer_*) extra=(--set "Tools/Die wall/Diameter=7.52"
-                           --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04") ;;
+                           --set "Tools/Upper punch/Displacement history=0:0, 0.8:0.04"
+                           --set "Explicit/Number of steps=500") ;;
     # the poured beds shrunk to their first 12 spheres, and 500 explicit
     # steps for the short stroke
     # the press cycle's loading only, without its pressure window
