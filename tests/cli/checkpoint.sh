@@ -22,16 +22,7 @@
 set -eu
 cd "$WORK_DIR"
 source "$SOURCE_DIR/tests/cli/lib/parts.bash"
-prm="$SOURCE_DIR/prm/default.prm"
-j2=(--set "Material/Model=J2 plasticity" --set "Material/Finite strain=true"
-    --set "Mesh/Element size=0.5" --set "Time stepping/Number of steps=6"
-    --set "Output/Interval=2")
-pair=("${j2[@]}" --set "Particles/Centres=-1.25,0,1.25; 1.25,0,1.25"
-      --set "Mesh/Refinement directions=0,0,1; 0,0,-1; 1,0,0; -1,0,0"
-      --set "Mesh/Refined element size=0.2" --set "Tools/Die wall/Diameter=5.0"
-      --set "Tools/Upper punch/Displacement history=0:0, 1:0.15")
-free=("${j2[@]}" --set "Particles/Centres=-1.25,0,1.25; 1.25,0,1.25"
-      --set "Tools/Upper punch/Displacement history=0:0, 1:0.12")
+source "$SOURCE_DIR/tests/cli/lib/two_tin_spheres.bash"
 
 # compare the columns $1 of two statistics.csv files. $all: all but the
 # timing columns (wall_seconds, step_seconds) and linear_iterations: the

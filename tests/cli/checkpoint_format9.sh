@@ -25,14 +25,9 @@ unpack() {
   gunzip "$2/checkpoint/rank_0.bin.gz"
 }
 
-j2=(--set "Material/Model=J2 plasticity" --set "Material/Finite strain=true"
-    --set "Mesh/Element size=0.5" --set "Time stepping/Number of steps=6"
-    --set "Output/Interval=0")
-pair=("${j2[@]}" --set "Particles/Centres=-1.25,0,1.25; 1.25,0,1.25"
-      --set "Mesh/Refinement directions=0,0,1; 0,0,-1; 1,0,0; -1,0,0"
-      --set "Mesh/Refined element size=0.2" --set "Tools/Die wall/Diameter=5.0"
-      --set "Tools/Upper punch/Displacement history=0:0, 1:0.15")
-prm="$SOURCE_DIR/prm/default.prm"
+# cli.checkpoint's spheres, without graphics
+source "$SOURCE_DIR/tests/cli/lib/two_tin_spheres.bash"
+pair+=(--set "Output/Interval=0")
 "$DENSIFY" "$prm" "${pair[@]}" --set "Output/Directory=pair" > pair.log
 unpack pair pair_resumed
 "$DENSIFY" "$prm" "${pair[@]}" --set "Output/Directory=pair_resumed" \
