@@ -88,9 +88,7 @@ namespace densify
       tool_friction("Die wall", prm.tools.die_friction, mu);
     e.particle_contact  = scene.particles.size() > 1;
     e.particle_friction = mu;
-    e.friction_model =
-      (prm.contact.friction_model == "arctangent" ? FrictionModel::arctangent :
-                                                    FrictionModel::coulomb);
+    e.slip_rule         = slip_rule(prm.contact.friction_model);
 
     // contact points: the corners for P1, the Gauss points for P2
     const std::string &points = prm.contact.contact_points;
@@ -233,9 +231,7 @@ namespace densify
     const auto friction_text = [&](const double mu) {
       std::ostringstream text;
       if (mu > 0)
-        text << "friction " << mu << " "
-             << (e.friction_model == FrictionModel::arctangent ? "arctangent" :
-                                                                 "Coulomb");
+        text << "friction " << mu << " " << e.slip_rule->name();
       else
         text << "frictionless";
       return text.str();

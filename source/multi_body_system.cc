@@ -230,7 +230,7 @@ namespace densify
 
     // the friction law of every contact pair
     FrictionLaw friction;
-    friction.model             = effects.friction_model;
+    friction.slip              = effects.slip_rule;
     friction.consistent        = effects.consistent_friction_tangent;
     friction.pressure_coupling = effects.friction_pressure_coupling;
     friction.tangential_ratio =

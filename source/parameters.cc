@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <densify/contact/friction_law.h>
 #include <densify/fidelity.h>
 #include <densify/ignored_parameters.h>
 #include <densify/parameters.h>
@@ -551,7 +552,7 @@ namespace densify
         "stick stiffness); 'arctangent': the paper's regularised law "
         "t = mu p (2/pi) atan(v/v0) against the sliding velocity v, for "
         "comparisons with the paper.",
-        Patterns::Selection("Coulomb|arctangent"));
+        Patterns::Selection(slip_rule_names()));
       prm.add_parameter("Slip velocity",
                         contact.slip_velocity,
                         "v0 of the arctangent law, in mm/s (> 0): below it "

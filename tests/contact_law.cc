@@ -21,15 +21,14 @@ main()
   const Tensor<1, 3> t_old0({0.3, -0.2, 0.06});
   const double       eps = 1e3, lambda = 0.5, g0 = -1e-3;
   const char        *names[] = {"open", "stick", "slip"};
-  for (const FrictionModel model :
-       {FrictionModel::coulomb, FrictionModel::arctangent})
+  for (const std::string model : {"Coulomb", "arctangent"})
     for (const double slip : {1e-6, 1e-3})
       for (const double history : {0.01, 1.})
         {
           const Tensor<1, 3> t_old = history * t_old0;
           FrictionLaw        law;
           law.mu             = 0.2;
-          law.model          = model;
+          law.slip           = slip_rule(model);
           law.regularisation = 1e-4;
           law.consistent     = true;
           const Tensor<1, 3> d0({0.7 * slip, 0.4 * slip, -0.1 * slip});
@@ -67,8 +66,7 @@ main()
           const ContactResponse rs = evaluate_contact_law(
             lambda, g0 + n * d0, eps, n, t_old, d0, eps, law);
           Tensor<2, 3> expected = r0.stiffness;
-          if (model == FrictionModel::coulomb &&
-              r0.status == ContactStatus::slip)
+          if (model == "Coulomb" && r0.status == ContactStatus::slip)
             {
               const Tensor<1, 3> t_hat = r0.traction / r0.traction.norm();
               expected += (t_hat * K * t_hat) * outer_product(t_hat, t_hat);
@@ -93,8 +91,7 @@ main()
               1e-14 * K.norm() &&
             (ru.stiffness - transpose(ru.stiffness)).norm() <=
               1e-14 * ru.stiffness.norm();
-          std::cout << (model == FrictionModel::coulomb ? "Coulomb   " :
-                                                          "arctangent")
+          std::cout << (model == "Coulomb" ? "Coulomb   " : "arctangent")
                     << " slip " << std::setw(5) << slip << " history "
                     << std::setw(4) << history << " "
                     << names[static_cast<int>(r0.status)]

@@ -130,11 +130,10 @@ namespace
     // the committed state: the sphere back by @p back along (0, 1, -1)/sqrt2
     // (tangential to the wall, into the punch), the field 0.8 times as
     // large; its traction from a further 0.001 mm of motion before that
-    for (const FrictionModel model :
-         {FrictionModel::coulomb, FrictionModel::arctangent})
+    for (const std::string model : {"Coulomb", "arctangent"})
       for (const double back : {0.0005, 0.02})
         {
-          if (model == FrictionModel::arctangent && back < 0.01)
+          if (model == "arctangent" && back < 0.01)
             continue;
           const Tensor<1, 3> along(
             {0., 1. / std::sqrt(2.), -1. / std::sqrt(2.)});
@@ -145,7 +144,7 @@ namespace
                              state(shift - (back + 0.001) * along, 0.0032));
           FrictionLaw law;
           law.mu             = 0.2;
-          law.model          = model;
+          law.slip           = slip_rule(model);
           law.regularisation = 0.01;
           law.consistent     = true;
           ToolContact contact;
@@ -154,9 +153,8 @@ namespace
           contact.commit(mapping, committed);
           contact.set_committed_solution(committed);
           const auto [worst, r] = fd_error(contact);
-          report(std::string(model == FrictionModel::coulomb ?
-                               "Coulomb friction" :
-                               "arctangent friction") +
+          report(std::string(model == "Coulomb" ? "Coulomb friction" :
+                                                  "arctangent friction") +
                    ", committed state " + std::to_string(back) + " mm behind",
                  worst,
                  r);

@@ -74,8 +74,8 @@ namespace densify
     /// Friction coefficient of each tool (by ToolKind) and between particles.
     std::array<double, n_tool_kinds> tool_friction     = {{0., 0., 0.}};
     double                           particle_friction = 0.;
-    /// The friction law of every contact pair.
-    FrictionModel friction_model = FrictionModel::coulomb;
+    /// The slip rule of every contact pair (Contact/Friction model).
+    std::shared_ptr<const SlipRule> slip_rule = densify::slip_rule("Coulomb");
     /// The consistent friction tangent where friction acts.
     bool consistent_friction_tangent = false;
     /// With it, its nonsymmetric coupling of the slip traction with the

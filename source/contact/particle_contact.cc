@@ -511,17 +511,13 @@ namespace densify
                         if (r.status == ContactStatus::slip)
                           (*out.new_slip)[*c] += slip.norm();
                       }
-                    // the traction t = -eps_t s_e opposes the slip beyond
-                    // the spring's elastic slip s_e (the arctangent law has
-                    // no spring: all slip work is dissipated)
+                    // the traction opposes the slip beyond a stick
+                    // spring's elastic slip
                     result.friction_work -=
                       weight *
                       (r.traction *
-                       (friction.model == FrictionModel::coulomb ?
-                          Tensor<1, 3>(slip +
-                                       (r.traction - committed_traction[idx]) /
-                                         (friction.tangential_ratio * eps)) :
-                          slip)) *
+                       friction.dissipating_slip(
+                         slip, r.traction, committed_traction[idx], eps)) *
                       JxW;
                   }
                 result.max_penetration = std::max(result.max_penetration, -g);
@@ -556,16 +552,9 @@ namespace densify
                         if (friction_on && r.status == ContactStatus::slip)
                           result.n_slip += copy_last - copy_first;
                         result.normal_force += weight * p * JxW;
-                        // the potential p^2 / 2 eps of p = max(0, lambda -
-                        // eps g) and the stick spring's
                         result.elastic_energy +=
-                          weight * 0.5 *
-                          (p * p + (friction_on && friction.model ==
-                                                     FrictionModel::coulomb ?
-                                      r.traction.norm_square() /
-                                        friction.tangential_ratio :
-                                      0.)) /
-                          eps * JxW;
+                          weight *
+                          friction.elastic_energy(r, eps, friction_on) * JxW;
                         result.friction_force +=
                           weight * r.traction.norm() * JxW;
                         p_out      = p;

@@ -486,16 +486,10 @@ namespace densify
             if (r.status == ContactStatus::slip)
               (*out.new_slip)[*c * n_tools + t] += slip.norm();
           }
-        // the traction t = -eps_t s_e opposes the slip beyond the spring's
-        // elastic slip s_e (the arctangent law has no spring: all slip work
-        // is dissipated)
-        const bool spring = friction_laws[t].model == FrictionModel::coulomb;
+        // the traction opposes the slip beyond a stick spring's elastic slip
         result.friction_work -=
-          (r.traction *
-           (spring ?
-              Tensor<1, 3>(slip + (r.traction - committed_traction[idx]) /
-                                    (friction_laws[t].tangential_ratio * eps)) :
-              slip)) *
+          (r.traction * friction_laws[t].dissipating_slip(
+                          slip, r.traction, committed_traction[idx], eps)) *
           JxW;
       }
     result.max_penetration = std::max(result.max_penetration, -g);
@@ -508,14 +502,8 @@ namespace densify
     if (r.status == ContactStatus::slip && rough)
       result.n_slip += copy_last - copy_first;
     const unsigned int kind = static_cast<unsigned int>(tool.kind);
-    // the potential p^2 / 2 eps of p = max(0, lambda - eps g) and the stick
-    // spring's
     result.elastic_energy +=
-      0.5 *
-      (p * p + (rough && friction_laws[t].model == FrictionModel::coulomb ?
-                  r.traction.norm_square() / friction_laws[t].tangential_ratio :
-                  0.)) /
-      eps * JxW;
+      friction_laws[t].elastic_energy(r, eps, rough) * JxW;
     result.normal_force[kind] += p * JxW;
     result.axial_force[kind] += (p * n + r.traction)[2] * JxW;
     result.friction_force[kind] += r.traction * JxW;
