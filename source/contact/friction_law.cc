@@ -4,16 +4,18 @@
 #include <densify/contact/friction_law.h>
 
 #include <stdexcept>
+#include <utility>
 
 namespace densify
 {
   namespace
   {
-    /// One object of each rule, in the order of slip_rule_names().
-    const std::vector<std::shared_ptr<const SlipRule>> &
+    /// One object of each rule, in the order of slip_rule_names(): the
+    /// rules of Densify, then those register_slip_rule() adds.
+    std::vector<std::shared_ptr<const SlipRule>> &
     all_rules()
     {
-      static const std::vector<std::shared_ptr<const SlipRule>> rules = {
+      static std::vector<std::shared_ptr<const SlipRule>> rules = {
         std::make_shared<CoulombSlip>(), std::make_shared<ArctangentSlip>()};
       return rules;
     }
@@ -29,6 +31,18 @@ namespace densify
         return rule;
     throw std::invalid_argument("unknown friction model '" + name +
                                 "' (one of " + slip_rule_names() + ")");
+  }
+
+
+
+  void
+  register_slip_rule(std::shared_ptr<const SlipRule> rule)
+  {
+    for (const auto &known : all_rules())
+      if (known->name() == rule->name())
+        throw std::invalid_argument("a friction model named '" + rule->name() +
+                                    "' exists already");
+    all_rules().push_back(std::move(rule));
   }
 
 

@@ -118,6 +118,15 @@ namespace densify
   std::shared_ptr<const SlipRule>
   slip_rule(const std::string &name);
 
+  /**
+   * Add @p rule to the rules slip_rule() knows, under its name (which must
+   * be new), so that a rule defined outside Densify's sources (a test, a
+   * program that links Densify) is a value of Contact/Friction model in
+   * parameters declared after this call.
+   */
+  void
+  register_slip_rule(std::shared_ptr<const SlipRule> rule);
+
   /// The names of the slip rules, as a Patterns::Selection lists them.
   std::string
   slip_rule_names();
