@@ -276,6 +276,12 @@ namespace densify
         particle_contact->update_search(solution_ghosted, search_margin);
         other_terms.push_back(particle_contact.get());
       }
+    added_terms.clear();
+    for (const ForceTermFactory &make : added_term_factories)
+      {
+        added_terms.push_back(make(*this));
+        other_terms.push_back(added_terms.back().get());
+      }
     if (effects.method == Method::explicit_dynamics)
       {
         // the integral action on the penetration (Explicit/Contact

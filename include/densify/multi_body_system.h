@@ -32,6 +32,7 @@
 #include <densify/postprocess/particle_measures.h>
 #include <densify/scene.h>
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -90,6 +91,24 @@ namespace densify
     /// @p penalty of each particle, in the order they add to the residual.
     void
     setup_force_terms(const std::vector<double> &penalty);
+
+    /// Builds a force term over the system it is given, once the system's
+    /// own terms are built (add_force_term()).
+    using ForceTermFactory =
+      std::function<std::unique_ptr<ForceTerm>(const MultiBodySystem &)>;
+
+    /**
+     * Add the force term that @p factory builds to every later
+     * setup_force_terms(), after the contact terms, under both methods: a
+     * term defined outside Densify's sources (a test, a program that links
+     * Densify) joins the residual, the tangent, the commit, the roll-back
+     * and the checkpoint as the system's own terms do.
+     */
+    void
+    add_force_term(ForceTermFactory factory)
+    {
+      added_term_factories.push_back(std::move(factory));
+    }
 
     /// Every force term that is on: the bulk terms, then the others.
     std::vector<ForceTerm *>
@@ -251,6 +270,9 @@ namespace densify
     std::unique_ptr<ParticleContact> particle_contact;
     std::unique_ptr<PoleSprings>     pole_springs;
     std::unique_ptr<Stabilisation>   stabilisation;
+    /// The terms of add_force_term(): their factories and the terms built.
+    std::vector<ForceTermFactory>           added_term_factories;
+    std::vector<std::unique_ptr<ForceTerm>> added_terms;
     /// The force terms that are on, in the order they add to the residual:
     /// the bulk (continuum, body force), then the others.
     std::vector<ForceTerm *> bulk_terms, other_terms;

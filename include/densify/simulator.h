@@ -84,6 +84,14 @@ namespace densify
       given_effects = std::make_unique<Effects>(scene_effects);
     }
 
+    /// Add a force term of the caller's to the system before setup()
+    /// (MultiBodySystem::add_force_term()).
+    void
+    add_force_term(MultiBodySystem::ForceTermFactory factory)
+    {
+      system.add_force_term(std::move(factory));
+    }
+
     /// Set up particles, mesh and system without solving; run() calls it
     /// unless it was called before.
     void
