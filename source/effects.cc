@@ -67,8 +67,7 @@ namespace densify
         "Mesh/Polynomial degree = 1 (quadratic tetrahedra do not lock: use "
         "none or auto)");
     e.locking = (remedy == "nodal averaging" ||
-                 (remedy == "auto" && prm.mesh.degree == 1 &&
-                  e.law == MaterialModel::j2_plasticity)) ?
+                 (remedy == "auto" && prm.mesh.degree == 1 && e.law.plastic)) ?
                   LockingRemedy::nodal_averaging :
                   LockingRemedy::none;
 
@@ -245,7 +244,7 @@ namespace densify
     if (e.particle_contact)
       out << ", particle-particle contact ("
           << friction_text(e.particle_friction) << ")";
-    if (e.law == MaterialModel::j2_plasticity)
+    if (e.law.plastic)
       out << ", plastic history";
     if (e.locking == LockingRemedy::nodal_averaging)
       out << ", nodal-averaged F-bar (P1 locking remedy)";

@@ -6,6 +6,7 @@
 #include <densify/contact/friction_law.h>
 #include <densify/fidelity.h>
 #include <densify/ignored_parameters.h>
+#include <densify/material/factory.h>
 #include <densify/parameters.h>
 #include <densify/utilities.h>
 
@@ -277,7 +278,7 @@ namespace densify
         "strain = true) is for compaction: single particles and layers of "
         "touching particles in a die (prm/single_layer_sn.prm); elastic for "
         "small deformations and verification (prm/hertz.prm).",
-        Patterns::Selection("elastic|J2 plasticity"));
+        Patterns::Selection(material_model_names()));
       prm.add_parameter(
         "Finite strain",
         material.finite_strain,

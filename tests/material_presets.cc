@@ -78,13 +78,12 @@ main()
             << (find_material_preset(custom_material_name) ? "yes" : "no")
             << "; names: " << material_names(" or ") << "\n";
 
-  // Material/Model and Material/Hardening, as text, to their enums.
-  const bool parsed =
-    parse_material_model("elastic") == MaterialModel::elastic &&
-    parse_material_model("J2 plasticity") == MaterialModel::j2_plasticity &&
-    parse_hardening("none") == Hardening::none &&
-    parse_hardening("linear") == Hardening::linear &&
-    parse_hardening("power law") == Hardening::power_law;
+  // Material/Model and Material/Hardening, as text, to their models.
+  const bool parsed = !parse_material_model("elastic").plastic &&
+                      parse_material_model("J2 plasticity").plastic &&
+                      parse_hardening("none") == Hardening::none &&
+                      parse_hardening("linear") == Hardening::linear &&
+                      parse_hardening("power law") == Hardening::power_law;
   std::cout << "model and hardening parsed: " << (parsed ? "yes" : "no")
             << "\n";
   ok = ok && parsed;

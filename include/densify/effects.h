@@ -65,7 +65,7 @@ namespace densify
     /// Solver/Method.
     Method method = Method::implicit;
     /// The material law of every particle, and its kinematics.
-    MaterialModel law           = MaterialModel::elastic;
+    MaterialModel law           = parse_material_model("elastic");
     bool          finite_strain = false;
     /// The locking remedy.
     LockingRemedy locking = LockingRemedy::none;

@@ -8,15 +8,109 @@
 
 namespace densify
 {
-  MaterialModel
+  namespace
+  {
+    /// Finite-strain J2Plasticity with the hardening of @p prm.
+    std::shared_ptr<const Material>
+    create_j2(J2Parameters j2, const MaterialParameters &prm)
+    {
+      if (!prm.finite_strain)
+        throw std::runtime_error(
+          "Material/Finite strain = false needs Material/Model = elastic: "
+          "J2 plasticity is implemented at finite strain only");
+      j2.hardening = parse_hardening(prm.hardening);
+      switch (j2.hardening)
+        {
+          case Hardening::none:
+            break;
+          case Hardening::linear:
+            j2.H = prm.hardening_modulus;
+            break;
+          case Hardening::power_law:
+            j2.K = prm.hardening_coefficient;
+            j2.n = prm.hardening_exponent;
+            break;
+        }
+      try
+        {
+          return std::make_shared<J2Plasticity>(j2);
+        }
+      catch (const std::invalid_argument &e)
+        {
+          throw std::runtime_error(std::string(e.what()) +
+                                   " (subsection Material)");
+        }
+    }
+
+
+
+    /// Small-strain LinearElastic, or finite-strain Hencky elasticity (J2
+    /// without yield).
+    std::shared_ptr<const Material>
+    create_elastic(J2Parameters j2, const MaterialParameters &prm)
+    {
+      if (!prm.finite_strain)
+        return std::make_shared<LinearElastic>(j2.E,
+                                               j2.nu,
+                                               j2.label,
+                                               j2.density);
+      j2.sigma0 = std::numeric_limits<double>::infinity();
+      try
+        {
+          return std::make_shared<J2Plasticity>(j2);
+        }
+      catch (const std::invalid_argument &e)
+        {
+          throw std::runtime_error(std::string(e.what()) +
+                                   " (subsection Material)");
+        }
+    }
+
+
+
+    /// Densify's models, then those register_material_model() adds.
+    std::vector<MaterialModel> &
+    all_models()
+    {
+      static std::vector<MaterialModel> models = {
+        {"elastic", false, create_elastic}, {"J2 plasticity", true, create_j2}};
+      return models;
+    }
+  } // namespace
+
+
+
+  const MaterialModel &
   parse_material_model(const std::string &model)
   {
-    if (model == "elastic")
-      return MaterialModel::elastic;
-    if (model == "J2 plasticity")
-      return MaterialModel::j2_plasticity;
-    throw std::runtime_error("unknown Material/Model '" + model +
-                             "': use elastic or J2 plasticity");
+    for (const MaterialModel &known : all_models())
+      if (known.name == model)
+        return known;
+    throw std::runtime_error("unknown Material/Model '" + model + "': use " +
+                             material_model_names(" or "));
+  }
+
+
+
+  void
+  register_material_model(const MaterialModel &model)
+  {
+    for (const MaterialModel &known : all_models())
+      if (known.name == model.name)
+        throw std::invalid_argument("a material model named '" + model.name +
+                                    "' exists already");
+    all_models().push_back(model);
+  }
+
+
+
+  std::string
+  material_model_names(const std::string &separator)
+  {
+    std::string names;
+    for (const MaterialModel &model : all_models())
+      names += (names.empty() ? "" : separator) + model.name;
+    return names;
   }
 
 
@@ -56,41 +150,6 @@ namespace densify
         "' (Particles/Materials or the particle file): use " +
         material_names(" or "));
 
-    const MaterialModel model = parse_material_model(prm.model);
-    if (!prm.finite_strain)
-      {
-        if (model != MaterialModel::elastic)
-          throw std::runtime_error(
-            "Material/Finite strain = false needs Material/Model = elastic: "
-            "J2 plasticity is implemented at finite strain only");
-        return std::make_shared<LinearElastic>(j2.E, j2.nu, name, j2.density);
-      }
-    if (model == MaterialModel::elastic)
-      j2.sigma0 = std::numeric_limits<double>::infinity();
-    else
-      {
-        j2.hardening = parse_hardening(prm.hardening);
-        switch (j2.hardening)
-          {
-            case Hardening::none:
-              break;
-            case Hardening::linear:
-              j2.H = prm.hardening_modulus;
-              break;
-            case Hardening::power_law:
-              j2.K = prm.hardening_coefficient;
-              j2.n = prm.hardening_exponent;
-              break;
-          }
-      }
-    try
-      {
-        return std::make_shared<J2Plasticity>(j2);
-      }
-    catch (const std::invalid_argument &e)
-      {
-        throw std::runtime_error(std::string(e.what()) +
-                                 " (subsection Material)");
-      }
+    return parse_material_model(prm.model).create(j2, prm);
   }
 } // namespace densify
