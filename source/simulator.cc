@@ -119,6 +119,12 @@ namespace densify
         const Checkpoint::Resumed resumed = checkpoint->read();
         first_step                        = resumed.step + 1;
         wall_before                       = resumed.wall_seconds;
+        if (control.stop_after > 0 && control.stop_after < first_step)
+          throw InputError(
+            "--stop-after " + std::to_string(control.stop_after) +
+            ": the checkpoint is after step " + std::to_string(resumed.step) +
+            ", so the run would never stop there; give a later load step, "
+            "or no --stop-after");
       }
     report.open(control.resume, first_step);
     QuasiStaticStop quasi_static(prm, system, *checkpoint);

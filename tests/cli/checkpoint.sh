@@ -9,7 +9,8 @@
 #  3. on 2 MPI ranks with --stop-after, resumed on 2 ranks: equal to the
 #     uninterrupted 1-rank run to the Newton tolerance;
 #  4. one-line errors (exit 2): resume on another number of ranks, with other
-#     parameters, or without a checkpoint;
+#     parameters, with a --stop-after step the checkpoint has passed, or
+#     without a checkpoint;
 #  5. a finished run pressed further: its last step's checkpoint (6 steps,
 #     a checkpoint every 3) resumed with a longer End time, Number of steps
 #     and punch history (the same load step) equals the run made to the
@@ -134,6 +135,15 @@ set -e
 cat changed.err
 [ $rc -eq 2 ] && [ "$(wc -l < changed.err)" -eq 1 ]
 grep -q "other parameters (it has 'Contact/Friction coefficient = 0.2', this run 'Contact/Friction coefficient = 0.3')" changed.err
+# a load step to stop after that the checkpoint has passed
+set +e
+"$DENSIFY" "$prm" "${free[@]}" --set "Output/Directory=changed" --resume \
+  --stop-after 1 > /dev/null 2> passed.err
+rc=$?
+set -e
+cat passed.err
+[ $rc -eq 2 ] && [ "$(wc -l < passed.err)" -eq 1 ]
+grep -q -- "--stop-after 1: the checkpoint is after step 2, so the run would never stop there" passed.err
 
 # 4c. no checkpoint
 set +e
