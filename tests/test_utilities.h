@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -100,6 +101,34 @@ namespace densify
                                             "Mesh/Refinement directions="};
       overrides.insert(overrides.end(), extra.begin(), extra.end());
       return overrides;
+    }
+
+    /**
+     * Overrides that make prm/hertz.prm the coarse sphere of
+     * friction_sliding: refined at its poles, pressed by 0.03 mm between
+     * two punches with friction 0.2 in t = 0..1, then pulled along x by the
+     * body force @p b (MPa/mm = N/mm^3), ramped in t = 1..2; 6 load steps, up
+     * to 3 cut-backs; writing into @p directory, followed by @p extra.
+     */
+    inline std::vector<std::string>
+    pulled_sphere(const std::string       &directory,
+                  const double             b,
+                  std::vector<std::string> extra)
+    {
+      char force[64];
+      std::snprintf(force, sizeof(force), "%.17g,0,0", b);
+      std::vector<std::string> overrides = {
+        "Mesh/Refinement directions=0,0,1; 0,0,-1",
+        "Mesh/Refined element size=0.1",
+        "Contact/Friction coefficient=0.2",
+        "Tools/Upper punch/Displacement history=0:0, 1:0.03",
+        std::string("Particles/Body force=") + force,
+        "Particles/Body force history=0:0, 1:0, 2:1",
+        "Time stepping/End time=2",
+        "Time stepping/Number of steps=6",
+        "Time stepping/Maximum cut-backs=3"};
+      overrides.insert(overrides.end(), extra.begin(), extra.end());
+      return coarse_sphere(directory, overrides);
     }
 
     /**

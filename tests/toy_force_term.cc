@@ -96,26 +96,15 @@ namespace
   End
   run(const double b, const bool toy)
   {
-    std::ostringstream force;
-    force << std::setprecision(17) << (toy ? 0. : b) << ",0,0";
     Parameters       parameters;
     ParameterHandler prm;
     testing::read_scene(
       parameters,
       prm,
       "hertz.prm",
-      testing::coarse_sphere(toy ? "output_toy" : "output_body_force",
-                             {"Mesh/Refinement directions=0,0,1; 0,0,-1",
-                              "Mesh/Refined element size=0.1",
-                              "Contact/Friction coefficient=0.2",
-                              "Tools/Upper punch/Displacement history=0:0, "
-                              "1:0.03",
-                              "Particles/Body force=" + force.str(),
-                              "Particles/Body force history=0:0, 1:0, 2:1",
-                              "Time stepping/End time=2",
-                              "Time stepping/Number of steps=6",
-                              "Time stepping/Maximum cut-backs=3",
-                              "Contact/Friction tangent=consistent",
+      testing::pulled_sphere(toy ? "output_toy" : "output_body_force",
+                             toy ? 0. : b,
+                             {"Contact/Friction tangent=consistent",
                               "Solver/Linear solver=gmres-amg"}));
     Simulator simulator(parameters, MPI_COMM_WORLD, false);
     if (toy)

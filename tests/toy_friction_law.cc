@@ -140,25 +140,15 @@ namespace
   std::unique_ptr<Simulator>
   make(Parameters &parameters, ParameterHandler &prm, const double b)
   {
-    std::ostringstream force;
-    force << std::setprecision(17) << b << ",0,0";
-    testing::read_scene(parameters,
-                        prm,
-                        "hertz.prm",
-                        testing::coarse_sphere(
-                          "output_b" + std::to_string(b),
-                          {"Mesh/Refinement directions=0,0,1; 0,0,-1",
-                           "Mesh/Refined element size=0.1",
-                           "Contact/Friction coefficient=0.2",
-                           "Contact/Friction model=toy",
-                           "Tools/Upper punch/Displacement history=0:0, 1:0.03",
-                           "Particles/Body force=" + force.str(),
-                           "Particles/Body force history=0:0, 1:0, 2:1",
-                           "Time stepping/End time=2",
-                           "Time stepping/Number of steps=6",
-                           "Time stepping/Maximum cut-backs=3",
-                           "Contact/Friction tangent=consistent",
-                           "Solver/Linear solver=gmres-amg"}));
+    testing::read_scene(
+      parameters,
+      prm,
+      "hertz.prm",
+      testing::pulled_sphere("output_b" + std::to_string(b),
+                             b,
+                             {"Contact/Friction model=toy",
+                              "Contact/Friction tangent=consistent",
+                              "Solver/Linear solver=gmres-amg"}));
     return std::make_unique<Simulator>(parameters, MPI_COMM_WORLD, false);
   }
 } // namespace
