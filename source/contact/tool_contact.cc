@@ -435,6 +435,9 @@ namespace densify
                        Tensor<1, 3>       &delta) const
   {
     const bool rough = has_friction() && friction_laws[t].mu > 0.;
+    // the law of a frictionless point, built once (no copy per point)
+    static const FrictionLaw frictionless;
+    const FrictionLaw       &law = rough ? friction_laws[t] : frictionless;
     // relative motion since the last accepted increment
     delta = rough ? Tensor<1, 3>(motion - (shift[t] - committed_shift[t])) :
                     Tensor<1, 3>();
@@ -446,7 +449,7 @@ namespace densify
       rough ? committed_traction[idx] : Tensor<1, 3>(),
       delta,
       (rough ? friction_laws[t].tangential_ratio : 1.) * eps,
-      rough ? friction_laws[t] : FrictionLaw());
+      law);
   }
 
 
