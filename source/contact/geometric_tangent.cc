@@ -35,6 +35,36 @@ namespace densify
     const double       det = m11 * m22 - m12 * m12;
     std::vector<Tensor<1, 3>> dn(2 * n_dofs), dxi(2 * n_dofs);
     std::vector<double>       dg(2 * n_dofs);
+    // a point held beside the facet: its gap adds |t|, t = (I - n n)(x_s -
+    // y), which changes by t/|t| . (dx_s - dy) - ((x_s - y) . n) t/|t| . dn
+    // with y at fixed b (held at an edge, y slides along it, normal to t,
+    // which leaves |t| unchanged to first order)
+    Tensor<1, 3> beside;
+    double       normal_offset = 0.;
+    // held at an edge (one barycentric coordinate at its bound, the
+    // smallest), y slides along the edge from corner edge[0] to edge[1],
+    // where (x_s - y) . (c_1 - c_0) = 0 gives its motion
+    std::array<int, 2> edge = {{-1, -1}};
+    if (!sliding)
+      {
+        normal_offset        = x_s_minus_y * n;
+        const Tensor<1, 3> t = x_s_minus_y - normal_offset * n;
+        if (t.norm() > 0.)
+          beside = t / t.norm();
+        const double lowest = std::min({bary[0], bary[1], bary[2]});
+        unsigned int n_free = 0;
+        for (unsigned int a = 0; a < 3; ++a)
+          if (bary[a] > lowest + 1e-12)
+            {
+              if (n_free < 2)
+                edge[n_free] = a;
+              ++n_free;
+            }
+        if (n_free != 2)
+          edge = {{-1, -1}};
+      }
+    const Tensor<1, 3> edge_dir =
+      edge[0] >= 0 ? Tensor<1, 3>(c[edge[1]] - c[edge[0]]) : Tensor<1, 3>();
     for (unsigned int j = 0; j < 2 * n_dofs; ++j)
       {
         // the motion of the slave point relative to the flat facet's
@@ -68,7 +98,19 @@ namespace densify
             dxi[j]           = db1 * (ref_corner[1] - ref_corner[0]) +
                      db2 * (ref_corner[2] - ref_corner[0]);
           }
-        dg[j] = x_s_minus_x_m * dn[j] - n * (dx_m_dxi * dxi[j]);
+        else if (edge[0] >= 0)
+          {
+            // (dx_s - dy) . e + (x_s - y) . de = 0 with de = dc_1 - dc_0
+            double turn = 0.;
+            if (a >= 0)
+              turn = x_s_minus_y[component[j - n_dofs]] *
+                     ((a == edge[1] ? 1. : 0.) - (a == edge[0] ? 1. : 0.));
+            const double ds =
+              (edge_dir * relative + turn) / (edge_dir * edge_dir);
+            dxi[j] = ds * (ref_corner[edge[1]] - ref_corner[edge[0]]);
+          }
+        dg[j] = x_s_minus_x_m * dn[j] - n * (dx_m_dxi * dxi[j]) +
+                beside * relative - normal_offset * (beside * dn[j]);
       }
     // the friction traction's change dt[j] by the same motion
     std::vector<Tensor<1, 3>> dt(friction != nullptr ? 2 * n_dofs : 0);

@@ -345,8 +345,11 @@ namespace densify
                 Projection best;
                 double     best_distance = std::numeric_limits<double>::max();
                 if (kept != numbers::invalid_unsigned_int)
-                  best =
-                    project(x_s, kept, x_now, projection_band, best_distance);
+                  best = project(x_s,
+                                 kept,
+                                 x_now,
+                                 assigned_in_band[idx] ? projection_band : 0.,
+                                 best_distance);
                 else
                   {
                     const unsigned int *first =
@@ -364,36 +367,61 @@ namespace densify
                         numbers::invalid_unsigned_int;
                     best = choose_facet(
                       x_s, first, last, x_now, best_distance, particle);
+                    // the closest facet, measured to its enlargement only
+                    // where the point projects into it
+                    const auto inside_of = [](const Projection &pr) {
+                      return std::min({pr.bary[0], pr.bary[1], pr.bary[2]});
+                    };
+                    bool in_band = inside_of(best) > 0.;
                     if (out.new_assignment != nullptr &&
                         old != numbers::invalid_unsigned_int &&
-                        old != best.facet &&
                         facets[old].particle == facets[best.facet].particle)
                       {
                         // hysteresis: keep the old facet of the same particle
                         // while the point projects into it enlarged by the
                         // band, and no other facet is closer by more than
                         // that band
-                        double           d2;
-                        const Projection pr =
-                          project(x_s, old, x_now, projection_band, d2);
-                        const double inside =
-                          std::min({pr.bary[0], pr.bary[1], pr.bary[2]});
-                        double size = 0;
-                        for (unsigned int a = 0; a < 3; ++a)
-                          size =
-                            std::max(size,
-                                     (x_now[facets[old].cell->vertex_index(
-                                        facets[old].local_vertex[a])] -
-                                      x_now[facets[old].cell->vertex_index(
-                                        facets[old].local_vertex[(a + 1) % 3])])
-                                       .norm());
-                        if (inside > -projection_band * (1. - 1e-9) &&
-                            std::sqrt(d2) <=
-                              std::sqrt(best_distance) + projection_band * size)
-                          best = pr;
+                        bool keep = old == best.facet;
+                        if (!keep)
+                          {
+                            double           d2;
+                            const Projection pr =
+                              project(x_s, old, x_now, projection_band, d2);
+                            double size = 0;
+                            for (unsigned int a = 0; a < 3; ++a)
+                              size = std::max(
+                                size,
+                                (x_now[facets[old].cell->vertex_index(
+                                   facets[old].local_vertex[a])] -
+                                 x_now[facets[old].cell->vertex_index(
+                                   facets[old].local_vertex[(a + 1) % 3])])
+                                  .norm());
+                            keep =
+                              inside_of(pr) > -projection_band * (1. - 1e-9) &&
+                              std::sqrt(d2) <= std::sqrt(best_distance) +
+                                                 projection_band * size;
+                          }
+                        // a kept facet is measured as the evaluations since
+                        // its assignment measured it: to its enlargement
+                        // once the point has projected into it
+                        if (keep)
+                          {
+                            double           d2;
+                            const Projection facet_itself =
+                              project(x_s, old, x_now, 0., d2);
+                            in_band = assigned_in_band[idx] != 0 ||
+                                      inside_of(facet_itself) > 0.;
+                            best =
+                              in_band ?
+                                project(x_s, old, x_now, projection_band, d2) :
+                                facet_itself;
+                          }
                       }
                     if (out.new_assignment != nullptr)
-                      (*out.new_assignment)[idx] = best.facet;
+                      {
+                        (*out.new_assignment)[idx] = best.facet;
+                        (*out.new_in_band)[idx]    = in_band;
+                      }
                   }
                 const Facet        &master = facets[best.facet];
                 const Tensor<1, 3> &n      = best.normal;
@@ -757,12 +785,15 @@ namespace densify
   {
     std::vector<unsigned int> new_assignment(assigned.size(),
                                              numbers::invalid_unsigned_int);
+    std::vector<char>         new_in_band(assigned.size(), 1);
     unsigned int              n_changed = 0;
     Outputs                   out;
     out.new_assignment = &new_assignment;
+    out.new_in_band    = &new_in_band;
     out.n_changed      = &n_changed;
     loop(mapping, solution, out);
     assigned.swap(new_assignment);
+    assigned_in_band.swap(new_in_band);
     return Utilities::MPI::sum(n_changed, dof_handler->get_communicator());
   }
 

@@ -105,6 +105,7 @@ namespace densify
     committed_traction.assign(friction.mu > 0 ? n_points : 0, Tensor<1, 3>());
     accumulated_slip.assign(friction.mu > 0 ? n_points : 0, 0.);
     assigned.assign(n_points, numbers::invalid_unsigned_int);
+    assigned_in_band.assign(n_points, 1);
     near.valid = false;
   }
 

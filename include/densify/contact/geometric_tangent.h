@@ -36,6 +36,12 @@ namespace densify
    * through the corners: the gap g = (x_s - x_m) . n then also changes by
    * @p x_s_minus_x_m . dn - n . (@p dx_m_dxi dxi), which the pressure
    * p = lambda - @p eps g follows (both vanish for P1).
+   * Unless @p sliding, the projection is held at the facet's edge or corner:
+   * the gap then adds the distance |t| beside the facet, t = (I - n n)
+   * (x_s - y), whose change t/|t| . (dx_s - dy) - ((x_s - y) . n) t/|t| . dn
+   * is added, and y held at an edge (one barycentric coordinate, the
+   * smallest, at its bound) slides along it as (x_s - y) . (c_1 - c_0) = 0
+   * requires.
    * With friction (@p friction not null), the tangential traction t
    * follows the same motion: the tangent plane P = I - n n turns with n,
    * and the slip increment delta = du_s - du_m(xi) changes with the

@@ -171,10 +171,14 @@ namespace densify
      * that band times the facet's size; otherwise it takes the closest
      * candidate facet of the same particle (a point keeps its particle from
      * the first call after reset_projections() on). Evaluations between two
-     * calls use the assigned facets (enlarged), so the residual stays
-     * continuous while a point slides across a facet edge instead of jumping
-     * with the facet normal. Returns how many points in contact changed their
-     * facet (the sum over all ranks, on every rank).
+     * calls use the assigned facets, enlarged once the point has projected
+     * into its facet, so the residual stays continuous while a point slides
+     * across a facet edge instead of jumping with the facet normal; a point
+     * assigned a facet beside which it lies (its closest point on an edge or
+     * corner) measures its gap to the facet itself, as the assignment did,
+     * not to the facet's plane, until it projects into the facet. Returns
+     * how many points in contact changed their facet (the sum over all
+     * ranks, on every rank).
      */
     unsigned int
     update_projections(const Mapping<3>                    &mapping,
@@ -284,6 +288,7 @@ namespace densify
       const DoFHandler<3>       *post           = nullptr;
       SurfaceFieldSums          *sums           = nullptr;
       std::vector<unsigned int> *new_assignment = nullptr;
+      std::vector<char>         *new_in_band    = nullptr;
       unsigned int              *n_changed      = nullptr;
     };
 
@@ -398,6 +403,14 @@ namespace densify
     /// The master facet assigned to each slave point
     /// (numbers::invalid_unsigned_int: the closest candidate).
     std::vector<unsigned int> assigned;
+
+    /// Per slave point, whether its gap to the assigned facet is measured to
+    /// the facet enlarged by #projection_band (the point has projected into
+    /// the facet since the facet was assigned to it) or to the facet itself
+    /// (it was assigned a facet beside which it lies, its closest point on an
+    /// edge or corner, and has not projected into it since): the evaluations
+    /// between two assignments measure the gap as the assignment did.
+    std::vector<char> assigned_in_band;
 
     /**
      * Near lists of the explicit pass (Verlet lists): per slave point the
