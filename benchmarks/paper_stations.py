@@ -6,7 +6,7 @@ rows), the force curve's largest jump from 60 % density on, and the force
 against an implicit reference of
 doc/paper_comparison.md: 'plain' (the default; Sn, Fe or Cu by the plain
 F-bar element: alpha = 0, no barrier) or 'defaults' (Sn, Fe or Cu with the
-defaults: "The reference with the defaults"; Cu's reaches 1.216 mm, so its
+defaults: "The reference with the defaults"; Cu's ends at 1.2749 mm, so its
 1.28 mm row compares with nan).
 
 Usage (from the source root):
