@@ -48,45 +48,27 @@ namespace
 {
   using namespace densify;
 
-  /// The displacement that moves particle 1 by @p shift (fully ghosted).
+  /// The displacement that moves particle 1 by @p shift (fully ghosted);
+  /// with @p roughness > 0 each of particle 0's entries is a deterministic
+  /// pseudo-random value in [-@p roughness, @p roughness], so its faceted
+  /// surface has concave edges and corners as a pressed particle has.
   TrilinosWrappers::MPI::Vector
-  shifted(const DoFHandler<3> &dof_handler, const Tensor<1, 3> &shift)
+  shifted(const DoFHandler<3> &dof_handler,
+          const Tensor<1, 3>  &shift,
+          const double         roughness = 0.)
   {
     TrilinosWrappers::MPI::Vector owned(dof_handler.locally_owned_dofs(),
                                         MPI_COMM_WORLD);
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->material_id() == 1)
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int d = 0; d < 3; ++d)
-            owned(cell->vertex_dof_index(v, d)) = shift[d];
-    owned.compress(VectorOperation::insert);
-    TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
-                                      complete_index_set(dof_handler.n_dofs()),
-                                      MPI_COMM_WORLD);
-    all = owned;
-    return all;
-  }
-
-  /// shifted() with particle 0's surface made rough: each of its
-  /// displacement entries a deterministic pseudo-random value in
-  /// [-@p amplitude, @p amplitude], so its faceted surface has concave edges
-  /// and corners as a plastically pressed particle has.
-  TrilinosWrappers::MPI::Vector
-  rough(const DoFHandler<3> &dof_handler,
-        const Tensor<1, 3>  &shift,
-        const double         amplitude)
-  {
-    TrilinosWrappers::MPI::Vector owned(dof_handler.locally_owned_dofs(),
-                                        MPI_COMM_WORLD);
-    owned = shifted(dof_handler, shift);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->material_id() == 0)
+      if (cell->is_locally_owned())
         for (const unsigned int v : cell->vertex_indices())
           for (unsigned int d = 0; d < 3; ++d)
             {
               const types::global_dof_index i = cell->vertex_dof_index(v, d);
               const double hash = std::sin(12.9898 * i + 78.233) * 43758.5453;
-              owned(i) = amplitude * (2. * (hash - std::floor(hash)) - 1.);
+              owned(i)          = cell->material_id() == 1 ?
+                                    shift[d] :
+                                    roughness * (2. * (hash - std::floor(hash)) - 1.);
             }
     owned.compress(VectorOperation::insert);
     TrilinosWrappers::MPI::Vector all(dof_handler.locally_owned_dofs(),
@@ -213,7 +195,9 @@ main(int argc, char **argv)
     for (unsigned int k = 0; k <= 100; ++k)
       {
         const TrilinosWrappers::MPI::Vector u =
-          rough(dof_handler, Tensor<1, 3>({0.08 * k / 100, 0.01, -0.15}), 0.03);
+          shifted(dof_handler,
+                  Tensor<1, 3>({0.08 * k / 100, 0.01, -0.15}),
+                  0.03);
         TrilinosWrappers::MPI::Vector kept(dof_handler.locally_owned_dofs(),
                                            MPI_COMM_WORLD),
           closest(kept);
