@@ -381,12 +381,12 @@ namespace densify
                         // while the point projects into it enlarged by the
                         // band, and no other facet is closer by more than
                         // that band
-                        bool keep = old == best.facet;
+                        bool             keep = old == best.facet;
+                        double           d2;
+                        const Projection banded =
+                          project(x_s, old, x_now, projection_band, d2);
                         if (!keep)
                           {
-                            double           d2;
-                            const Projection pr =
-                              project(x_s, old, x_now, projection_band, d2);
                             double size = 0;
                             for (unsigned int a = 0; a < 3; ++a)
                               size = std::max(
@@ -396,25 +396,23 @@ namespace densify
                                  x_now[facets[old].cell->vertex_index(
                                    facets[old].local_vertex[(a + 1) % 3])])
                                   .norm());
-                            keep =
-                              inside_of(pr) > -projection_band * (1. - 1e-9) &&
-                              std::sqrt(d2) <= std::sqrt(best_distance) +
-                                                 projection_band * size;
+                            keep = inside_of(banded) >
+                                     -projection_band * (1. - 1e-9) &&
+                                   std::sqrt(d2) <= std::sqrt(best_distance) +
+                                                      projection_band * size;
                           }
                         // a kept facet is measured as the evaluations since
                         // its assignment measured it: to its enlargement
                         // once the point has projected into it
                         if (keep)
                           {
-                            double           d2;
-                            const Projection facet_itself =
-                              project(x_s, old, x_now, 0., d2);
+                            const Projection itself =
+                              old == best.facet ?
+                                best :
+                                project(x_s, old, x_now, 0., d2);
                             in_band = assigned_in_band[idx] != 0 ||
-                                      inside_of(facet_itself) > 0.;
-                            best =
-                              in_band ?
-                                project(x_s, old, x_now, projection_band, d2) :
-                                facet_itself;
+                                      inside_of(itself) > 0.;
+                            best = in_band ? banded : itself;
                           }
                       }
                     if (out.new_assignment != nullptr)
